@@ -1,0 +1,79 @@
+//! # embedded-raytracer
+//!
+//! A `no_std`, allocation-free ray-tracing kernel: spheres seen by a pin-hole camera,
+//! streamed scanline by scanline into any embedded-graphics
+//! [`DrawTarget`](embedded_graphics::draw_target::DrawTarget) — an SPI LCD driver, the
+//! desktop simulator, a test's `MockDisplay`.
+//!
+//! ```
+//! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb888, prelude::*};
+//! use embedded_raytracer::{Camera, Render, Scene, Sphere, Vec3};
+//!
+//! static SCENE: Scene<2> = Scene::from_array(
+//!     [
+//!         Sphere::new(Vec3::new(0.0, 0.0, 0.0), 1.0, Rgb888::new(255, 64, 64)),
+//!         Sphere::new(Vec3::new(1.2, 0.5, -1.5), 1.0, Rgb888::new(64, 64, 255)),
+//!     ],
+//!     Rgb888::new(0, 0, 0),
+//! );
+//!
+//! let camera = Camera::new(
+//!     Vec3::new(0.0, 0.0, 5.0),   // eye
+//!     Vec3::new(0.0, 0.0, 0.0),   // look at
+//!     Vec3::new(0.0, 1.0, 0.0),   // up
+//!     60f32.to_radians(),         // vertical field of view
+//!     Size::new(64, 48),
+//! )?;
+//! let mut display = MockDisplay::<Rgb888>::new();
+//! Render::new(&SCENE, &camera).draw(&mut display)?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! ## Conventions
+//!
+//! Right-handed world coordinates; angles in radians (degrees only in scene-file
+//! fields named `_deg`); `f32` throughout, with every approximation's error bound in
+//! its doc comment. The camera is the seed's: `w` toward the look-at point,
+//! `u = normalize(w × up)`, `v = u × w`, image plane at distance 1, column `i` left to
+//! right and row `j` top to bottom. Shading is the seed's Lab #1,
+//! `colour × clamp(n·(−w), 0.3, 1)`. The same scene and method give bit-identical
+//! pixels on every target (IEEE-754 `f32`, no fused multiply-add, the same libm).
+//!
+//! ## Features
+//!
+//! - `std` (default): [`scene_file`] (TOML scene files) and host tooling. Inert on
+//!   bare-metal targets (`target_os = "none"`); use `default-features = false` in
+//!   firmware to make that explicit.
+#![no_std]
+#![deny(missing_docs)]
+#![deny(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::panic,
+    clippy::indexing_slicing
+)]
+// Tests may unwrap and index: a panic there is a failed test, not a kernel panic.
+#![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing))]
+// `!(x >= bound)` is deliberate throughout: it rejects NaN along with out-of-range values.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+#[cfg(host_std)]
+extern crate std;
+
+pub mod camera;
+pub mod error;
+pub mod math;
+pub mod render;
+pub mod scene;
+#[cfg(host_std)]
+pub mod scene_file;
+pub mod shade;
+pub mod sphere;
+pub mod vec3;
+
+pub use camera::{Camera, CameraParams};
+pub use error::{CameraError, CameraParam, ParseMethodError, SceneError, SphereError};
+pub use render::{Method, Render, Sample, SphereTest, Sqrt, Stepping};
+pub use scene::{Hit, Scene};
+pub use sphere::Sphere;
+pub use vec3::Vec3;

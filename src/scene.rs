@@ -1,0 +1,148 @@
+//! A fixed-capacity scene of spheres and the closest-hit search.
+
+use embedded_graphics::pixelcolor::Rgb888;
+use heapless::Vec;
+
+use crate::error::SceneError;
+use crate::math::{ExactSqrt, FastSqrt, SqrtFn};
+use crate::render::{SphereTest, Sqrt};
+use crate::sphere::{Algebraic, Geometric, HitTest, Robust, Sphere, SphereConsts};
+use crate::vec3::Vec3;
+
+/// Up to `N` spheres and a background colour. No allocation: the spheres live in a
+/// `heapless::Vec`, inline.
+///
+/// A scene can be a `static` in flash:
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb888;
+/// use embedded_raytracer::{Scene, Sphere, Vec3};
+///
+/// static SCENE: Scene<2> = Scene::from_array(
+///     [
+///         Sphere::new(Vec3::new(0.0, 0.0, 0.0), 1.0, Rgb888::new(255, 64, 64)),
+///         Sphere::new(Vec3::new(1.5, 0.0, -2.0), 1.0, Rgb888::new(64, 255, 64)),
+///     ],
+///     Rgb888::new(0, 0, 0),
+/// );
+/// assert_eq!(SCENE.spheres().len(), 2);
+/// ```
+#[derive(Clone, Debug)]
+pub struct Scene<const N: usize> {
+    spheres: Vec<Sphere, N>,
+    background: Rgb888,
+}
+
+/// A ray's closest hit: which sphere (index into [`Scene::spheres`]) and the ray
+/// parameter `t` (`point = eye + t·d`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Index of the sphere hit.
+    pub index: usize,
+    /// Ray parameter of the hit, `> 0`.
+    pub t: f32,
+}
+
+impl<const N: usize> Scene<N> {
+    /// An empty scene.
+    #[must_use]
+    pub const fn new(background: Rgb888) -> Self {
+        Self {
+            spheres: Vec::new(),
+            background,
+        }
+    }
+
+    /// A scene from an array of `M ≤ N` spheres, usable in a `static` (`M > N` is a
+    /// compile-time error). The spheres are not checked: build them with
+    /// [`Sphere::try_new`] in a const context to have bad numbers rejected at compile
+    /// time.
+    #[must_use]
+    pub const fn from_array<const M: usize>(spheres: [Sphere; M], background: Rgb888) -> Self {
+        Self {
+            spheres: Vec::from_array(spheres),
+            background,
+        }
+    }
+
+    /// Adds a sphere after checking it ([`Sphere::try_new`]'s rules).
+    pub fn push(&mut self, sphere: Sphere) -> Result<(), SceneError> {
+        let sphere = Sphere::try_new(sphere.center, sphere.radius, sphere.color)?;
+        self.spheres
+            .push(sphere)
+            .map_err(|_| SceneError::Full { capacity: N })
+    }
+
+    /// The spheres, in the order they were added.
+    #[must_use]
+    pub fn spheres(&self) -> &[Sphere] {
+        &self.spheres
+    }
+
+    /// The colour of rays that hit nothing.
+    #[must_use]
+    pub const fn background(&self) -> Rgb888 {
+        self.background
+    }
+
+    /// Sets the background colour.
+    pub fn set_background(&mut self, background: Rgb888) {
+        self.background = background;
+    }
+
+    /// The closest hit with `t > 0` of the ray `origin + t·dir` over all spheres.
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::Rgb888;
+    /// use embedded_raytracer::{Scene, Sphere, SphereTest, Sqrt, Vec3};
+    ///
+    /// let mut scene: Scene<2> = Scene::new(Rgb888::new(0, 0, 0));
+    /// scene.push(Sphere::new(Vec3::new(0.0, 0.0, -10.0), 1.0, Rgb888::new(255, 0, 0))).unwrap();
+    /// scene.push(Sphere::new(Vec3::new(0.0, 0.0, -5.0), 1.0, Rgb888::new(0, 255, 0))).unwrap();
+    /// let hit = scene.closest_hit(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), SphereTest::Robust, Sqrt::Exact);
+    /// assert_eq!(hit.map(|h| (h.index, h.t)), Some((1, 4.0)));
+    /// ```
+    #[must_use]
+    pub fn closest_hit(&self, origin: Vec3, dir: Vec3, test: SphereTest, sqrt: Sqrt) -> Option<Hit> {
+        fn search<T: HitTest, Q: SqrtFn, const N: usize>(
+            spheres: &[Sphere],
+            origin: Vec3,
+            dir: Vec3,
+        ) -> Option<Hit> {
+            let consts: Vec<SphereConsts, N> = spheres
+                .iter()
+                .map(|s| SphereConsts::new(s, origin, Vec3::ZERO))
+                .collect();
+            closest::<T, Q>(&consts, dir, dir.dot(dir)).map(|(index, t, _)| Hit { index, t })
+        }
+        let s = &self.spheres;
+        match (test, sqrt) {
+            (SphereTest::Algebraic, Sqrt::Exact) => search::<Algebraic, ExactSqrt, N>(s, origin, dir),
+            (SphereTest::Algebraic, Sqrt::Fast) => search::<Algebraic, FastSqrt, N>(s, origin, dir),
+            (SphereTest::Geometric, Sqrt::Exact) => search::<Geometric, ExactSqrt, N>(s, origin, dir),
+            (SphereTest::Geometric, Sqrt::Fast) => search::<Geometric, FastSqrt, N>(s, origin, dir),
+            (SphereTest::Robust, Sqrt::Exact) => search::<Robust, ExactSqrt, N>(s, origin, dir),
+            (SphereTest::Robust, Sqrt::Fast) => search::<Robust, FastSqrt, N>(s, origin, dir),
+        }
+    }
+}
+
+/// Closest hit over `spheres`: each test is given the nearest `t` found so far as its
+/// `t_max`, so a farther sphere is rejected by the same comparison that finds hits.
+/// Returns the index, `t` and the sphere's constants.
+#[inline(always)]
+pub(crate) fn closest<T: HitTest, Q: SqrtFn>(
+    spheres: &[SphereConsts],
+    d: Vec3,
+    a: f32,
+) -> Option<(usize, f32, &SphereConsts)> {
+    let mut t_max = f32::INFINITY;
+    let mut best = None;
+    for (index, s) in spheres.iter().enumerate() {
+        if let Some(t) = T::hit::<Q>(s, d, a, t_max) {
+            t_max = t;
+            best = Some((index, t, s));
+        }
+    }
+    best
+}

@@ -1,0 +1,59 @@
+//! The seed's "Lab #1" shading.
+
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+
+/// Lowest shading factor: surfaces facing away are never darker than 30 %.
+pub const AMBIENT: f32 = 0.3;
+
+/// Lab #1 shading: `object_colour × clamp(n_z, 0.3, 1.0)`, each 8-bit channel scaled
+/// and rounded to nearest (halves round up).
+///
+/// `n_z` is the view-space z of the unit outward normal, `n·(−w)`. A NaN factor (a
+/// degenerate sphere) shades at the 0.3 floor rather than producing garbage.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb888;
+/// use embedded_raytracer::shade::lab1;
+///
+/// let c = Rgb888::new(255, 100, 10);
+/// assert_eq!(lab1(c, 1.0), c);                      // facing the eye
+/// assert_eq!(lab1(c, 0.5), Rgb888::new(128, 50, 5)); // 127.5 → 128, 5.0 → 5
+/// assert_eq!(lab1(c, -1.0), lab1(c, 0.3));           // clamped at 0.3
+/// ```
+#[must_use]
+#[inline]
+pub fn lab1(color: Rgb888, n_z: f32) -> Rgb888 {
+    // max/min (not clamp) so a NaN picks the bound instead of propagating.
+    #[allow(clippy::manual_clamp)]
+    let k = n_z.max(AMBIENT).min(1.0);
+    Rgb888::new(scale(color.r(), k), scale(color.g(), k), scale(color.b(), k))
+}
+
+/// `round(channel × k)` for `k ∈ [0.3, 1]`: at most 255.5 before the truncating cast,
+/// so it cannot overflow.
+#[inline(always)]
+fn scale(channel: u8, k: f32) -> u8 {
+    (channel as f32 * k + 0.5) as u8
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clamps_at_both_ends_and_rounds() {
+        let white = Rgb888::new(255, 255, 255);
+        assert_eq!(lab1(white, 2.0), white);
+        assert_eq!(lab1(white, 1.0), white);
+        // 255 × 0.3 = 76.5 → 77 (round half up)
+        assert_eq!(lab1(white, 0.3), Rgb888::new(77, 77, 77));
+        assert_eq!(lab1(white, 0.0), Rgb888::new(77, 77, 77));
+        assert_eq!(lab1(white, -0.7), Rgb888::new(77, 77, 77));
+        assert_eq!(lab1(white, f32::NAN), Rgb888::new(77, 77, 77));
+        // 10 × 0.45 = 4.5 → 5; 10 × 0.44 = 4.4 → 4
+        assert_eq!(lab1(Rgb888::new(10, 0, 1), 0.45), Rgb888::new(5, 0, 0));
+        assert_eq!(lab1(Rgb888::new(10, 0, 1), 0.44), Rgb888::new(4, 0, 0));
+        // 200 × 0.75 = 150 exactly
+        assert_eq!(lab1(Rgb888::new(200, 0, 0), 0.75), Rgb888::new(150, 0, 0));
+    }
+}

@@ -80,6 +80,11 @@ pub mod sphere;
 pub mod vec3;
 
 pub use camera::{Camera, CameraParams};
+
+// The README's code blocks run as doctests too.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
 pub use error::{CameraError, CameraParam, ParseMethodError, SceneError, SphereError};
 pub use render::{Method, Render, Sample, SphereTest, Sqrt, Stepping};
 pub use scene::{Hit, Scene};

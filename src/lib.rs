@@ -70,6 +70,7 @@ extern crate std;
 
 pub mod camera;
 pub mod error;
+pub mod hash;
 pub mod math;
 pub mod render;
 pub mod scene;

@@ -1,0 +1,186 @@
+//! The standard scenes (`scenes/*.toml`) as `static`s for firmware, which has no file
+//! system. The numbers are copied from the TOML files; `tests/firmware_scenes.rs`
+//! loads every file and fails if any number here differs, so the two cannot diverge.
+//!
+//! Included with `#[path]` by the firmware examples and the host tests.
+
+#![allow(dead_code)]
+
+use embedded_graphics::{geometry::Size, pixelcolor::Rgb888};
+use embedded_raytracer::{CameraParams, Scene, Sphere, Vec3};
+
+const fn sphere(c: [f32; 3], radius: f32, color: [u8; 3]) -> Sphere {
+    Sphere::new(
+        Vec3::new(c[0], c[1], c[2]),
+        radius,
+        Rgb888::new(color[0], color[1], color[2]),
+    )
+}
+
+const fn camera(
+    eye: [f32; 3],
+    look_at: [f32; 3],
+    up: [f32; 3],
+    fov_y_deg: f32,
+    size: [u32; 2],
+) -> CameraParams {
+    CameraParams::new(
+        Vec3::new(eye[0], eye[1], eye[2]),
+        Vec3::new(look_at[0], look_at[1], look_at[2]),
+        Vec3::new(up[0], up[1], up[2]),
+        // Same conversion as the scene-file loader: f32::to_radians.
+        fov_y_deg * (core::f32::consts::PI / 180.0),
+        Size::new(size[0], size[1]),
+    )
+}
+
+/// `scenes/lab.toml`.
+pub static LAB: Scene<5> = Scene::from_array(
+    [
+        sphere([0.0, 0.0, 0.0], 1.0, [255, 64, 64]),
+        sphere([1.2, 0.6, -1.5], 1.0, [64, 255, 64]),
+        sphere([-1.7, -0.5, -0.8], 0.7, [64, 64, 255]),
+        sphere([0.5, -0.9, 1.6], 0.35, [255, 255, 64]),
+        sphere([-0.6, 1.4, -3.0], 0.9, [64, 255, 255]),
+    ],
+    Rgb888::new(0, 0, 0),
+);
+/// The camera of `scenes/lab.toml`.
+pub const LAB_CAMERA: CameraParams = camera(
+    [0.0, 0.0, 5.0],
+    [0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    60.0,
+    [320, 240],
+);
+
+/// `scenes/far.toml`.
+pub static FAR: Scene<1> = Scene::from_array(
+    [sphere([0.0, 0.0, 0.0], 1.0, [255, 160, 64])],
+    Rgb888::new(0, 0, 0),
+);
+/// The camera of `scenes/far.toml`.
+pub const FAR_CAMERA: CameraParams = camera(
+    [0.0, 0.0, 2000.0],
+    [0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    0.1,
+    [320, 240],
+);
+
+/// `scenes/grazing.toml`.
+pub static GRAZING: Scene<3> = Scene::from_array(
+    [
+        sphere([0.0, 0.0, 0.0], 1.0, [255, 64, 64]),
+        sphere([2.0, 0.0, 0.0], 1.0, [64, 255, 64]),
+        sphere([0.9, 0.55, 0.45], 0.45, [64, 64, 255]),
+    ],
+    Rgb888::new(16, 16, 32),
+);
+/// The camera of `scenes/grazing.toml`.
+pub const GRAZING_CAMERA: CameraParams = camera(
+    [0.5, 0.3, 0.84],
+    [1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    90.0,
+    [320, 240],
+);
+
+/// `scenes/drift.toml`.
+pub static DRIFT: Scene<5> = Scene::from_array(
+    [
+        sphere([1000.0, 1000.0, 995.0], 1.0, [255, 64, 64]),
+        sphere([1001.2, 1000.6, 993.5], 1.0, [64, 255, 64]),
+        sphere([998.3, 999.5, 994.2], 0.7, [64, 64, 255]),
+        sphere([1000.5, 999.1, 996.6], 0.35, [255, 255, 64]),
+        sphere([999.4, 1001.4, 992.0], 0.9, [64, 255, 255]),
+    ],
+    Rgb888::new(0, 0, 0),
+);
+/// The camera of `scenes/drift.toml`.
+pub const DRIFT_CAMERA: CameraParams = camera(
+    [1000.0, 1000.0, 1000.0],
+    [1000.0, 1000.0, 995.0],
+    [0.0, 1.0, 0.0],
+    60.0,
+    [1920, 1080],
+);
+
+/// `scenes/crowd.toml`.
+pub static CROWD: Scene<64> = Scene::from_array(
+    [
+        sphere([-7.0, 0.0, -7.0], 0.55, [64, 64, 255]),
+        sphere([-5.0, 0.39, -7.0], 0.8, [91, 64, 244]),
+        sphere([-3.0, 0.49, -7.0], 0.7, [118, 64, 233]),
+        sphere([-1.0, 0.21, -7.0], 0.6, [145, 64, 222]),
+        sphere([1.0, -0.22, -7.0], 0.85, [173, 64, 212]),
+        sphere([3.0, -0.49, -7.0], 0.75, [200, 64, 201]),
+        sphere([5.0, -0.39, -7.0], 0.65, [227, 64, 190]),
+        sphere([7.0, 0.01, -7.0], 0.55, [255, 64, 180]),
+        sphere([-7.0, 0.28, -5.0], 0.7, [64, 91, 244]),
+        sphere([-5.0, 0.5, -5.0], 0.6, [91, 91, 233]),
+        sphere([-3.0, 0.34, -5.0], 0.85, [118, 91, 222]),
+        sphere([-1.0, -0.08, -5.0], 0.75, [145, 91, 212]),
+        sphere([1.0, -0.44, -5.0], 0.65, [173, 91, 201]),
+        sphere([3.0, -0.46, -5.0], 0.55, [200, 91, 190]),
+        sphere([5.0, -0.14, -5.0], 0.8, [227, 91, 180]),
+        sphere([7.0, 0.29, -5.0], 0.7, [255, 91, 169]),
+        sphere([-7.0, 0.47, -3.0], 0.85, [64, 118, 233]),
+        sphere([-5.0, 0.43, -3.0], 0.75, [91, 118, 222]),
+        sphere([-3.0, 0.07, -3.0], 0.65, [118, 118, 212]),
+        sphere([-1.0, -0.34, -3.0], 0.55, [145, 118, 201]),
+        sphere([1.0, -0.5, -3.0], 0.8, [173, 118, 190]),
+        sphere([3.0, -0.28, -3.0], 0.7, [200, 118, 180]),
+        sphere([5.0, 0.16, -3.0], 0.6, [227, 118, 169]),
+        sphere([7.0, 0.47, -3.0], 0.85, [255, 118, 158]),
+        sphere([-7.0, 0.49, -1.0], 0.65, [64, 145, 222]),
+        sphere([-5.0, 0.21, -1.0], 0.55, [91, 145, 212]),
+        sphere([-3.0, -0.22, -1.0], 0.8, [118, 145, 201]),
+        sphere([-1.0, -0.49, -1.0], 0.7, [145, 145, 190]),
+        sphere([1.0, -0.39, -1.0], 0.6, [173, 145, 180]),
+        sphere([3.0, 0.01, -1.0], 0.85, [200, 145, 169]),
+        sphere([5.0, 0.4, -1.0], 0.75, [227, 145, 158]),
+        sphere([7.0, 0.48, -1.0], 0.65, [255, 145, 147]),
+        sphere([-7.0, 0.34, 1.0], 0.8, [64, 173, 212]),
+        sphere([-5.0, -0.08, 1.0], 0.7, [91, 173, 201]),
+        sphere([-3.0, -0.44, 1.0], 0.6, [118, 173, 190]),
+        sphere([-1.0, -0.46, 1.0], 0.85, [145, 173, 180]),
+        sphere([1.0, -0.14, 1.0], 0.75, [173, 173, 169]),
+        sphere([3.0, 0.29, 1.0], 0.65, [200, 173, 158]),
+        sphere([5.0, 0.5, 1.0], 0.55, [227, 173, 147]),
+        sphere([7.0, 0.33, 1.0], 0.8, [255, 173, 137]),
+        sphere([-7.0, 0.07, 3.0], 0.6, [64, 200, 201]),
+        sphere([-5.0, -0.34, 3.0], 0.85, [91, 200, 190]),
+        sphere([-3.0, -0.5, 3.0], 0.75, [118, 200, 180]),
+        sphere([-1.0, -0.28, 3.0], 0.65, [145, 200, 169]),
+        sphere([1.0, 0.16, 3.0], 0.55, [173, 200, 158]),
+        sphere([3.0, 0.47, 3.0], 0.8, [200, 200, 147]),
+        sphere([5.0, 0.43, 3.0], 0.7, [227, 200, 137]),
+        sphere([7.0, 0.06, 3.0], 0.6, [255, 200, 126]),
+        sphere([-7.0, -0.22, 5.0], 0.75, [64, 227, 190]),
+        sphere([-5.0, -0.49, 5.0], 0.65, [91, 227, 180]),
+        sphere([-3.0, -0.39, 5.0], 0.55, [118, 227, 169]),
+        sphere([-1.0, 0.01, 5.0], 0.8, [145, 227, 158]),
+        sphere([1.0, 0.4, 5.0], 0.7, [173, 227, 147]),
+        sphere([3.0, 0.48, 5.0], 0.6, [200, 227, 137]),
+        sphere([5.0, 0.21, 5.0], 0.85, [227, 227, 126]),
+        sphere([7.0, -0.23, 5.0], 0.75, [255, 227, 115]),
+        sphere([-7.0, -0.44, 7.0], 0.55, [64, 255, 180]),
+        sphere([-5.0, -0.46, 7.0], 0.8, [91, 255, 169]),
+        sphere([-3.0, -0.14, 7.0], 0.7, [118, 255, 158]),
+        sphere([-1.0, 0.29, 7.0], 0.6, [145, 255, 147]),
+        sphere([1.0, 0.5, 7.0], 0.85, [173, 255, 137]),
+        sphere([3.0, 0.33, 7.0], 0.75, [200, 255, 126]),
+        sphere([5.0, -0.09, 7.0], 0.65, [227, 255, 115]),
+        sphere([7.0, -0.44, 7.0], 0.55, [255, 255, 105]),
+    ],
+    Rgb888::new(0, 0, 0),
+);
+/// The camera of `scenes/crowd.toml`.
+pub const CROWD_CAMERA: CameraParams = camera(
+    [0.0, 6.0, 14.0],
+    [0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    60.0,
+    [320, 240],
+);

@@ -6,12 +6,16 @@
 //!
 //! | function | source | error bound |
 //! |---|---|---|
-//! | [`sqrt_exact`] | `libm::sqrtf` | correctly rounded (≤ 0.5 ulp) |
+//! | [`sqrt_exact`] | the FPU's `VSQRT.F32` on hard-float ARM (Cortex-M4F/M7), `libm::sqrtf` elsewhere | correctly rounded (≤ 0.5 ulp): both back ends give the same bits |
 //! | [`sqrt_fast`] | micromath's bit trick `(bits + 0x3f80_0000) >> 1` | `0 ≤ (fast − exact)/exact ≤ 6.07 %` for finite `x ≥ 0`; exact at powers of 4 |
 
 /// Correctly rounded `f32` square root (IEEE-754 `sqrt`, ≤ 0.5 ulp).
 ///
-/// Bit-identical on every target, because correct rounding has one answer.
+/// On hard-float ARM (`thumbv7em-none-eabihf`) this is the FPU's `VSQRT.F32`
+/// instruction; libm's `sqrtf` there is a ~55-instruction integer routine (libm's
+/// `arch` feature has no ARM version). Elsewhere it is `libm::sqrtf`. Both are
+/// correctly rounded, so the results are bit-identical on every target (the firmware
+/// example checks that in QEMU over millions of inputs).
 ///
 /// ```
 /// use embedded_raytracer::math::sqrt_exact;
@@ -20,7 +24,45 @@
 #[must_use]
 #[inline(always)]
 pub fn sqrt_exact(x: f32) -> f32 {
+    #[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
+    {
+        // SAFETY: `embedded_raytracer_vsqrtf` (below) follows the AAPCS-VFP calling
+        // convention of `extern "C"` on this target: its argument arrives in s0 and its
+        // result leaves in s0; it touches no other register and no memory.
+        unsafe { embedded_raytracer_vsqrtf(x) }
+    }
+    #[cfg(not(all(target_arch = "arm", target_abi = "eabihf")))]
+    {
+        libm::sqrtf(x)
+    }
+}
+
+/// `libm::sqrtf`, for checking [`sqrt_exact`]'s hardware back end against it.
+#[must_use]
+pub fn sqrt_libm(x: f32) -> f32 {
     libm::sqrtf(x)
+}
+
+// The one `unsafe` asm block of the crate: `VSQRT.F32 s0, s0; BX LR` as a function.
+// Hard-float ARM only. Stable Rust sets no `vfp2` target feature cfg for these
+// targets, so `asm!` cannot name s-registers; a `global_asm!` function with `.fpu`
+// declared is the stable way to reach the instruction.
+#[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
+core::arch::global_asm!(
+    ".fpu fpv4-sp-d16",
+    ".section .text.embedded_raytracer_vsqrtf,\"ax\",%progbits",
+    ".global embedded_raytracer_vsqrtf",
+    ".type embedded_raytracer_vsqrtf,%function",
+    ".thumb_func",
+    "embedded_raytracer_vsqrtf:",
+    "vsqrt.f32 s0, s0",
+    "bx lr",
+    ".size embedded_raytracer_vsqrtf, . - embedded_raytracer_vsqrtf",
+);
+
+#[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
+extern "C" {
+    fn embedded_raytracer_vsqrtf(x: f32) -> f32;
 }
 
 /// Fast approximate square root (micromath): one integer add and a shift.

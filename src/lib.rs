@@ -39,6 +39,11 @@
 //! `colour × clamp(n·(−w), 0.3, 1)`. The same scene and method give bit-identical
 //! pixels on every target (IEEE-754 `f32`, no fused multiply-add, the same libm).
 //!
+//! ## Low-depth displays
+//!
+//! [`dither`] turns the `Rgb888` stream into `BinaryColor`, `Gray2` or `Gray4` with an
+//! ordered (Bayer) dither keyed by pixel position: `render.draw(&mut display.dithered())`.
+//!
 //! ## Features
 //!
 //! - `std` (default): [`scene_file`] (TOML scene files) and host tooling. Inert on
@@ -53,7 +58,15 @@
     clippy::indexing_slicing
 )]
 // Tests may unwrap and index: a panic there is a failed test, not a kernel panic.
-#![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing))]
+#![cfg_attr(
+    test,
+    allow(
+        clippy::unwrap_used,
+        clippy::expect_used,
+        clippy::panic,
+        clippy::indexing_slicing
+    )
+)]
 // `!(x >= bound)` is deliberate throughout: it rejects NaN along with out-of-range values.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
@@ -61,6 +74,7 @@
 extern crate std;
 
 pub mod camera;
+pub mod dither;
 pub mod error;
 pub mod math;
 pub mod render;

@@ -432,6 +432,8 @@ struct App {
     screen: SimulatorDisplay<Rgb888>,
     dirty: bool,
     drag: Option<Point>,
+    /// Pixels that differed from the reference in the last difference view.
+    differing: Option<usize>,
 }
 
 impl App {
@@ -476,6 +478,7 @@ impl App {
             screen: SimulatorDisplay::new(Size::new(size.width, size.height + status_height)),
             dirty: true,
             drag: None,
+            differing: None,
         })
     }
 
@@ -502,7 +505,7 @@ impl App {
         self.mtime = now;
         match scene_file::load::<MAX_SPHERES>(&self.path) {
             Ok(file) => {
-                self.scene = Box::new(file.scene);
+                *self.scene = file.scene;
                 self.base = *file.camera.params();
                 self.error = None;
                 self.update_camera();
@@ -533,6 +536,7 @@ impl App {
         });
         let area = Rectangle::new(Point::zero(), self.size);
         let Ok(()) = self.screen.fill_contiguous(&area, pixels);
+        self.differing = self.diff.then_some(differing);
         debug_assert_eq!(shown.pixels.len(), w * self.size.height as usize);
 
         if self.overlay {
@@ -682,10 +686,8 @@ impl App {
                     }
                 }
             }
-            SimulatorEvent::MouseWheel { scroll_delta, .. } => {
-                if scroll_delta.y != 0 {
-                    self.zoom(-scroll_delta.y.signum());
-                }
+            SimulatorEvent::MouseWheel { scroll_delta, .. } if scroll_delta.y != 0 => {
+                self.zoom(-scroll_delta.y.signum());
             }
             _ => {}
         }
@@ -778,6 +780,192 @@ fn main() -> ExitCode {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn args(scene: &str, extra: &[&str]) -> Args {
+        let all = std::iter::once(scene)
+            .chain(extra.iter().copied())
+            .map(String::from);
+        parse_args(all).unwrap()
+    }
+
+    fn key(keycode: Keycode) -> SimulatorEvent {
+        SimulatorEvent::KeyDown {
+            keycode,
+            keymod: Mod::NOMOD,
+            repeat: false,
+        }
+    }
+
+    #[test]
+    fn keys_orbit_zoom_and_reset_to_the_files_camera() {
+        let mut app = App::new(&args("scenes/lab.toml", &[])).unwrap();
+        let file = *app.camera.params();
+        assert!(app.handle(key(Keycode::RIGHT)));
+        let turned = app.camera.params().eye;
+        assert!((turned - file.eye).length() > 0.1);
+        // Orbiting keeps the distance to the look-at point.
+        let dist = |e: Vec3| (e - file.look_at).length();
+        assert!((dist(turned) - dist(file.eye)).abs() < 1e-4);
+        app.handle(key(Keycode::PLUS));
+        assert!(dist(app.camera.params().eye) < dist(file.eye) * 0.95);
+        app.handle(key(Keycode::UP));
+        app.handle(SimulatorEvent::MouseWheel {
+            scroll_delta: Point::new(0, -1),
+            direction: embedded_graphics_simulator::sdl2::MouseWheelDirection::Normal,
+        });
+        app.handle(key(Keycode::R));
+        assert_eq!(*app.camera.params(), file);
+        assert!(!app.handle(key(Keycode::Q)));
+        assert!(!app.handle(SimulatorEvent::Quit));
+    }
+
+    #[test]
+    fn mouse_drag_orbits() {
+        let mut app = App::new(&args("scenes/lab.toml", &[])).unwrap();
+        let file = *app.camera.params();
+        app.handle(SimulatorEvent::MouseMove {
+            point: Point::new(50, 50),
+        });
+        assert_eq!(*app.camera.params(), file, "moving without a button does nothing");
+        app.handle(SimulatorEvent::MouseButtonDown {
+            mouse_btn: MouseButton::Left,
+            point: Point::new(50, 50),
+        });
+        app.handle(SimulatorEvent::MouseMove {
+            point: Point::new(90, 40),
+        });
+        assert_ne!(app.camera.params().eye, file.eye);
+        app.handle(SimulatorEvent::MouseButtonUp {
+            mouse_btn: MouseButton::Left,
+            point: Point::new(90, 40),
+        });
+        let after = app.camera.params().eye;
+        app.handle(SimulatorEvent::MouseMove {
+            point: Point::new(10, 10),
+        });
+        assert_eq!(app.camera.params().eye, after);
+    }
+
+    #[test]
+    fn m_cycles_all_methods_and_tab_all_models() {
+        let mut app = App::new(&args("scenes/lab.toml", &[])).unwrap();
+        let mut seen = Vec::new();
+        for _ in 0..Method::ALL.len() {
+            seen.push(app.view.method);
+            app.handle(key(Keycode::M));
+        }
+        assert_eq!(app.view.method, Method::DEFAULT, "back to the start after 18");
+        assert!(Method::ALL.iter().all(|m| seen.contains(m)));
+        let mut models = Vec::new();
+        for _ in 0..Model::ALL.len() {
+            models.push(app.view.model);
+            app.handle(key(Keycode::TAB));
+        }
+        assert_eq!(models, Model::ALL);
+        app.handle(key(Keycode::NUM_9));
+        assert_eq!(app.view.model, Model::BinaryDither);
+    }
+
+    #[test]
+    fn difference_view_marks_exactly_the_differing_pixels() {
+        let small = ["--size", "160x120"];
+        // The reference method against itself: nothing differs.
+        let mut app = App::new(&args(
+            "scenes/lab.toml",
+            &[&small[..], &["--stepping", "direct", "--diff"]].concat(),
+        ))
+        .unwrap();
+        app.redraw();
+        assert_eq!(app.differing, Some(0));
+        // The fast square root shades differently: the marked pixels are counted and
+        // painted, and each marked pixel really differs between the two renders.
+        let mut app = App::new(&args(
+            "scenes/lab.toml",
+            &[&small[..], &["--sqrt", "fast", "--diff"]].concat(),
+        ))
+        .unwrap();
+        app.redraw();
+        let n = app.differing.unwrap();
+        assert!(n > 0);
+        let shown = shade(&app.scene, &app.camera, &app.view, app.view.method).pixels;
+        let reference = shade(&app.scene, &app.camera, &app.view, REFERENCE).pixels;
+        let truly = shown.iter().zip(&reference).filter(|(a, b)| a != b).count();
+        assert_eq!(n, truly);
+        let marked = Rectangle::new(Point::zero(), app.size)
+            .points()
+            .filter(|&p| app.screen.get_pixel(p) == DIFF_COLOR)
+            .count();
+        assert_eq!(marked, n);
+        // D toggles it off: the plain frame again.
+        app.handle(key(Keycode::D));
+        app.redraw();
+        assert_eq!(app.differing, None);
+        assert_eq!(app.screen.get_pixel(Point::new(80, 60)), shown[60 * 160 + 80]);
+    }
+
+    #[test]
+    fn reload_keeps_the_last_good_scene_and_shows_the_error() {
+        let dir = std::env::temp_dir().join(format!("simulator-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("scene.toml");
+        let good = std::fs::read_to_string("scenes/lab.toml").unwrap();
+        std::fs::write(&path, &good).unwrap();
+        let mut app = App::new(&args(path.to_str().unwrap(), &["--size", "160x120"])).unwrap();
+        app.redraw();
+        let before: Vec<Rgb888> = Rectangle::new(Point::zero(), app.size)
+            .points()
+            .map(|p| app.screen.get_pixel(p))
+            .collect();
+        let touch = |text: &str, secs: u64| {
+            std::fs::write(&path, text).unwrap();
+            let t = SystemTime::UNIX_EPOCH + Duration::from_secs(secs);
+            std::fs::File::options()
+                .write(true)
+                .open(&path)
+                .unwrap()
+                .set_modified(t)
+                .unwrap();
+        };
+        let poll = |app: &mut App| {
+            app.last_poll = Instant::now() - 2 * POLL;
+            app.poll_file();
+        };
+        // A bad file: the error is kept for display, the scene is the old one.
+        touch(&good.replace("radius = 1.0", "radius = -1.0"), 1_000_000);
+        poll(&mut app);
+        let error = app.error.clone().unwrap();
+        assert!(error.contains("radius"), "{error}");
+        assert_eq!(app.scene.spheres().len(), 5);
+        app.redraw();
+        // The error box covers the top rows; the rest is still the last good frame.
+        assert_ne!(app.screen.get_pixel(Point::new(0, 0)), before[0]);
+        assert_eq!(
+            app.screen.get_pixel(Point::new(159, 119)),
+            before[119 * 160 + 159]
+        );
+        // Fixed with one sphere less: reloaded, error gone.
+        let i = good.rfind("[[sphere]]").unwrap();
+        touch(&good[..i], 2_000_000);
+        poll(&mut app);
+        assert_eq!(app.error, None);
+        assert_eq!(app.scene.spheres().len(), 4);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn bad_flags_are_errors() {
+        for bad in [
+            &["--display", "cmyk"][..],
+            &["--size", "12"],
+            &["--scale", "0"],
+            &["--bayer", "3"],
+            &["--frames", "2"],
+            &["--frobnicate"],
+        ] {
+            let all = bad.iter().map(|s| s.to_string());
+            assert!(parse_args(all).is_err(), "{bad:?}");
+        }
+    }
 
     #[test]
     fn zero_orbit_is_the_files_camera_and_a_full_turn_comes_back() {

@@ -5,7 +5,8 @@
 //! ```
 //!
 //! Exit 0 when the sizes match and every pixel is identical; otherwise prints the size
-//! mismatch or the number of differing pixels and the first few, and exits 1. An
+//! mismatch or the number of differing pixels, the largest channel difference and the
+//! first few, and exits 1. An
 //! unreadable file is exit 2.
 
 use std::process::ExitCode;
@@ -60,7 +61,18 @@ fn main() -> ExitCode {
         println!("{expected} = {actual}: all {total} pixels identical");
         return ExitCode::SUCCESS;
     }
-    eprintln!("{expected} != {actual}: {} of {total} pixels differ", diffs.len());
+    let largest = diffs
+        .iter()
+        .map(|(_, x, y)| {
+            let d = |a: u8, b: u8| a.abs_diff(b);
+            d(x.r(), y.r()).max(d(x.g(), y.g())).max(d(x.b(), y.b()))
+        })
+        .max()
+        .unwrap_or(0);
+    eprintln!(
+        "{expected} != {actual}: {} of {total} pixels differ, by up to {largest} in a channel",
+        diffs.len()
+    );
     for (p, x, y) in diffs.iter().take(SHOW) {
         eprintln!("  ({}, {}): {:?} vs {:?}", p.x, p.y, x, y);
     }

@@ -32,7 +32,7 @@
 //!   position (then `r = 0`, and `r/255 > (b + ½)/c` is never true).
 //! - Over any `n × n` window of a flat field (aligned or not: the window holds every
 //!   index `b` once) the number of `q + 1` pixels is `k = #{b : b + ½ < c·r/255}`,
-//!   i.e. `c·r/255` rounded to the nearest integer, so the window's mean level is
+//!   i.e. `c·r/255` rounded to the nearest integer (halves down), so the window's mean level is
 //!   `q + k/c` and differs from the ideal `L·M/255` by at most `1/(2c)` of one output
 //!   level — `≤ 1/(2·M·c)` of full scale: 1/32 of a level (4×4) and 1/128 (8×8).
 //!   Between two output levels the 4×4 matrix can show 17 distinct window means and

@@ -49,6 +49,8 @@
 //! - `std` (default): [`scene_file`] (TOML scene files) and host tooling. Inert on
 //!   bare-metal targets (`target_os = "none"`); use `default-features = false` in
 //!   firmware to make that explicit.
+//! - `window`: the desktop preview example (`examples/simulator.rs`, SDL2 through
+//!   embedded-graphics-simulator); adds nothing to the library.
 #![no_std]
 #![deny(missing_docs)]
 #![deny(

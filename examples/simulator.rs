@@ -20,7 +20,7 @@
 //!
 //! The scene file is polled for changes (mtime, four times a second) and reloaded;
 //! a file that fails to load leaves the last good scene on screen with the error text
-//! over it. The display resolution is fixed for the session: the file's
+//! over it (with `--no-overlay`, on stderr only). The display resolution is fixed for the session: the file's
 //! `camera.width`/`height` at start-up, or `--size`.
 //!
 //! Below the image, a status bar (omitted with `--no-overlay`) shows the render time

@@ -21,8 +21,11 @@
 //! 3. **Threshold by position.** For the `n × n` Bayer index matrix `B` (`n` = 4 or 8,
 //!    `c = n²` cells, each index `0 … c−1` once) and the pixel at target position
 //!    `(x, y)`, with `b = B[y mod n][x mod n]`, the output is `q + 1` when
-//!    `r/255 > (b + ½)/c`, otherwise `q`. This is evaluated exactly in integers
-//!    (`2·r·c > 255·(2b + 1)`), so there is no rounding anywhere in the stage.
+//!    `r/255 > (b + ½)/c`, otherwise `q`. This is evaluated exactly in integers:
+//!    `r > ⌊255·(2b + 1)/(2c)⌋`, with the right-hand side tabulated per position at
+//!    compile time, so there is no rounding anywhere in the stage and the per-pixel
+//!    work is the luma, one multiply, a division by the constant 255, one table
+//!    lookup and one compare.
 //!
 //! ## Error behaviour
 //!
@@ -140,7 +143,8 @@ impl Bayer {
     }
 
     /// The output level (`0 ..= max`) for luma `luma` at target position `(x, y)`:
-    /// steps 2 and 3 of the [module docs](self), exact in integers.
+    /// steps 2 and 3 of the [module docs](self), exact in integers (see
+    /// [`threshold`](Self::threshold)).
     ///
     /// ```
     /// use embedded_raytracer::dither::Bayer;
@@ -149,15 +153,70 @@ impl Bayer {
     /// assert_eq!(Bayer::Eight.level(128, 1, 1, 0), 0);
     /// ```
     #[must_use]
-    pub const fn level(self, luma: u8, max: u8, x: i32, y: i32) -> u8 {
-        let scaled = luma as u32 * max as u32; // ≤ 255·255
+    #[inline]
+    pub fn level(self, luma: u8, max: u8, x: i32, y: i32) -> u8 {
+        let scaled = u32::from(luma) * u32::from(max); // ≤ 255·255
         let q = scaled / 255;
         let r = scaled % 255;
-        let b = self.index(x, y);
-        // r/255 > (b + ½)/c  ⇔  2·r·c > 255·(2b + 1); both sides < 2^20.
-        let up = 2 * r * self.cells() > 255 * (2 * b + 1);
-        (q + up as u32) as u8
+        // r/255 > (b + ½)/c, through the per-position threshold table.
+        let up = r > u32::from(self.threshold(x, y));
+        (q + u32::from(up)) as u8
     }
+
+    /// The integer threshold at target position `(x, y)`: level `q + 1` when
+    /// `r > threshold`. It is `⌊255·(2b + 1) / (2c)⌋`, exact because `r` is an integer
+    /// (`r > X/(2c) ⇔ r > ⌊X/(2c)⌋`), so the table lookup is the rule of step 3.
+    ///
+    /// ```
+    /// use embedded_raytracer::dither::Bayer;
+    /// assert_eq!(Bayer::Four.threshold(0, 0), 7); // b = 0: ⌊255/32⌋
+    /// assert_eq!(Bayer::Four.threshold(0, 3), 247); // b = 15: ⌊255·31/32⌋
+    /// ```
+    #[must_use]
+    #[inline]
+    pub fn threshold(self, x: i32, y: i32) -> u8 {
+        match self {
+            Bayer::Four => lookup(&THRESHOLDS_4, x, y),
+            Bayer::Eight => lookup(&THRESHOLDS_8, x, y),
+        }
+    }
+}
+
+/// Per-position thresholds of the 4×4 matrix, built once at compile time.
+const THRESHOLDS_4: [[u8; 4]; 4] = thresholds(Bayer::Four);
+/// Per-position thresholds of the 8×8 matrix.
+const THRESHOLDS_8: [[u8; 8]; 8] = thresholds(Bayer::Eight);
+
+/// `⌊255·(2b + 1) / (2c)⌋` for every position of the matrix (≤ 253, fits a `u8`).
+// Compile-time indexing within the array's own bounds.
+#[allow(clippy::indexing_slicing)]
+const fn thresholds<const N: usize>(m: Bayer) -> [[u8; N]; N] {
+    let mut t = [[0u8; N]; N];
+    let c = m.cells();
+    let mut y = 0;
+    while y < N {
+        let mut x = 0;
+        while x < N {
+            let b = m.index(x as i32, y as i32);
+            t[y][x] = (255 * (2 * b + 1) / (2 * c)) as u8;
+            x += 1;
+        }
+        y += 1;
+    }
+    t
+}
+
+/// The table entry at `(x mod N, y mod N)`; `N` is a power of two, so masking the
+/// two's-complement coordinate is the Euclidean remainder (negative positions included)
+/// and the lookup cannot miss.
+#[inline(always)]
+fn lookup<const N: usize>(table: &[[u8; N]; N], x: i32, y: i32) -> u8 {
+    let mask = N - 1;
+    table
+        .get(y as usize & mask)
+        .and_then(|row| row.get(x as usize & mask))
+        .copied()
+        .unwrap_or(0)
 }
 
 /// A display colour the dither can produce: `MAX` + 1 evenly spaced levels.
@@ -356,6 +415,23 @@ mod tests {
                 }
             }
             assert_eq!(seen.iter().filter(|&&s| s).count(), m.cells() as usize);
+        }
+    }
+
+    #[test]
+    fn threshold_tables_are_the_exact_rule() {
+        // r > T[b]  ⇔  r/255 > (b + ½)/c, i.e. 2·r·c > 255·(2b + 1), for every r.
+        for m in [Bayer::Four, Bayer::Eight] {
+            let c = m.cells();
+            for y in 0..m.side() as i32 {
+                for x in 0..m.side() as i32 {
+                    let b = m.index(x, y);
+                    let t = u32::from(m.threshold(x, y));
+                    for r in 0..255u32 {
+                        assert_eq!(r > t, 2 * r * c > 255 * (2 * b + 1), "{m:?} b {b} r {r}");
+                    }
+                }
+            }
         }
     }
 

@@ -39,11 +39,18 @@
 //! `colour × clamp(n·(−w), 0.3, 1)`. The same scene and method give bit-identical
 //! pixels on every target (IEEE-754 `f32`, no fused multiply-add, the same libm).
 //!
+//! ## Low-depth displays
+//!
+//! [`dither`] turns the `Rgb888` stream into `BinaryColor`, `Gray2` or `Gray4` with an
+//! ordered (Bayer) dither keyed by pixel position: `render.draw(&mut display.dithered())`.
+//!
 //! ## Features
 //!
 //! - `std` (default): [`scene_file`] (TOML scene files) and host tooling. Inert on
 //!   bare-metal targets (`target_os = "none"`); use `default-features = false` in
 //!   firmware to make that explicit.
+//! - `window`: the desktop preview example (`examples/simulator.rs`, SDL2 through
+//!   embedded-graphics-simulator); adds nothing to the library.
 #![no_std]
 #![deny(missing_docs)]
 #![deny(
@@ -69,6 +76,7 @@
 extern crate std;
 
 pub mod camera;
+pub mod dither;
 pub mod error;
 pub mod hash;
 pub mod math;

@@ -63,6 +63,8 @@ extern crate std;
 pub mod camera;
 pub mod error;
 pub mod math;
+#[cfg(host_std)]
+pub mod reference;
 pub mod render;
 pub mod scene;
 #[cfg(host_std)]

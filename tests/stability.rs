@@ -94,8 +94,9 @@ fn distance_sweep_exhaustive() {
             (SphereTest::Robust, _) => assert_eq!(f.first_error, None, "{f:?}"),
             (SphereTest::Geometric, Sqrt::Fast) => assert_eq!(f.first_error, Some(10.0), "{f:?}"),
             _ => {
+                // More edge pixels than at 64 px: the first flip comes earlier.
                 let first = f.first_error.unwrap();
-                assert!((50.0..400.0).contains(&first), "{f:?}");
+                assert!((10.0..400.0).contains(&first), "{f:?}");
                 let outright = f.outright.unwrap();
                 assert!((1000.0..10000.0).contains(&outright), "{f:?}");
             }

@@ -41,7 +41,8 @@
 //!
 //! ## Features
 //!
-//! - `std` (default): [`scene_file`] (TOML scene files) and host tooling. Inert on
+//! - `std` (default): [`scene_file`] (TOML scene files), [`reference`] (the `f64`
+//!   reference renderer, error metrics and stability sweeps) and host tooling. Inert on
 //!   bare-metal targets (`target_os = "none"`); use `default-features = false` in
 //!   firmware to make that explicit.
 #![no_std]
@@ -53,7 +54,15 @@
     clippy::indexing_slicing
 )]
 // Tests may unwrap and index: a panic there is a failed test, not a kernel panic.
-#![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing))]
+#![cfg_attr(
+    test,
+    allow(
+        clippy::unwrap_used,
+        clippy::expect_used,
+        clippy::panic,
+        clippy::indexing_slicing
+    )
+)]
 // `!(x >= bound)` is deliberate throughout: it rejects NaN along with out-of-range values.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 

@@ -259,7 +259,9 @@ pub fn intersect(eye: D3, dir: D3, center: D3, radius: f64) -> RayHit {
     } else {
         (a * band).sqrt()
     };
-    let t_err = t.map_or(0.0, |t| t * (BAND_ULPS * eps + d_root / q.abs().max(f64::MIN_POSITIVE)));
+    let t_err = t.map_or(0.0, |t| {
+        t * (BAND_ULPS * eps + d_root / q.abs().max(f64::MIN_POSITIVE))
+    });
     RayHit {
         t,
         disc,
@@ -437,7 +439,12 @@ pub fn render_params<const N: usize>(scene: &Scene<N>, params: &CameraParams) ->
     let mut pixels = Vec::with_capacity(camera.width as usize * camera.height as usize);
     for j in 0..camera.height {
         for i in 0..camera.width {
-            pixels.push(trace_ray(&camera, &spheres, scene.background(), camera.direction(i, j)));
+            pixels.push(trace_ray(
+                &camera,
+                &spheres,
+                scene.background(),
+                camera.direction(i, j),
+            ));
         }
     }
     Some(ReferenceImage { camera, pixels })
@@ -582,7 +589,14 @@ mod tests {
     #[test]
     fn camera_basis_and_directions_by_hand() {
         // Lab camera: eye on +z looking down −z, 90° so tan(45°) = 1: ph = 2/H.
-        let cam = RefCamera::new(&params([0.0, 0.0, 5.0], [0.0; 3], core::f32::consts::FRAC_PI_2, 4, 2)).unwrap();
+        let cam = RefCamera::new(&params(
+            [0.0, 0.0, 5.0],
+            [0.0; 3],
+            core::f32::consts::FRAC_PI_2,
+            4,
+            2,
+        ))
+        .unwrap();
         assert_eq!(cam.w, D3::new(0.0, 0.0, -1.0));
         // u = w × up = (0,0,−1) × (0,1,0) = (1, 0, 0); v = u × w = (0, 1, 0).
         assert_eq!(cam.u, D3::new(1.0, 0.0, 0.0));
@@ -592,7 +606,10 @@ mod tests {
         assert_eq!(cam.pixel_width, cam.pixel_height);
         // p(0,0) − eye = w + (½ − 2)·pw·u + (1 − ½)·ph·v = (−1.5, 0.5, −1).
         let d = cam.direction(0, 0);
-        assert!((d.x + 1.5).abs() < 1e-6 && (d.y - 0.5).abs() < 1e-6 && d.z == -1.0, "{d:?}");
+        assert!(
+            (d.x + 1.5).abs() < 1e-6 && (d.y - 0.5).abs() < 1e-6 && d.z == -1.0,
+            "{d:?}"
+        );
         let d = cam.direction(3, 1);
         assert!((d.x - 1.5).abs() < 1e-6 && (d.y + 0.5).abs() < 1e-6, "{d:?}");
         // Non-square pixels: fov_x given separately.
@@ -601,7 +618,13 @@ mod tests {
         assert!((cam.pixel_width - 2.0 * 1f64.tan() / 10.0).abs() < 1e-7);
         assert!((cam.pixel_height - 2.0 * 0.5f64.tan() / 10.0).abs() < 1e-7);
         // Up parallel to the view: no basis.
-        let p = CameraParams::new(Vec3::ZERO, Vec3::new(0.0, 2.0, 0.0), Vec3::new(0.0, 1.0, 0.0), 1.0, Size::new(2, 2));
+        let p = CameraParams::new(
+            Vec3::ZERO,
+            Vec3::new(0.0, 2.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            1.0,
+            Size::new(2, 2),
+        );
         assert!(RefCamera::new(&p).is_none());
     }
 
@@ -659,7 +682,11 @@ mod tests {
         // (n_z = 1, full colour), the corners (direction (±1, ±1, −1)·… ) miss.
         let mut scene: Scene<2> = Scene::new(Rgb888::new(1, 2, 3));
         scene
-            .push(crate::Sphere::new(Vec3::new(0.0, 0.0, 0.0), 1.0, Rgb888::new(200, 100, 50)))
+            .push(crate::Sphere::new(
+                Vec3::new(0.0, 0.0, 0.0),
+                1.0,
+                Rgb888::new(200, 100, 50),
+            ))
             .unwrap();
         let p = params([0.0, 0.0, 5.0], [0.0; 3], core::f32::consts::FRAC_PI_2, 3, 3);
         let img = render_params(&scene, &p).unwrap();
@@ -695,8 +722,14 @@ mod tests {
         scene
             .push(crate::Sphere::new(Vec3::ZERO, 1.0, Rgb888::new(255, 64, 64)))
             .unwrap();
-        let cam = Camera::new(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), 0.6, Size::new(16, 12))
-            .unwrap();
+        let cam = Camera::new(
+            Vec3::new(0.0, 0.0, 5.0),
+            Vec3::ZERO,
+            Vec3::new(0.0, 1.0, 0.0),
+            0.6,
+            Size::new(16, 12),
+        )
+        .unwrap();
         let truth = render(&scene, &cam);
         let m = compare(&Render::<1, Rgb888>::new(&scene, &cam), &truth);
         assert_eq!((m.pixels, m.bad_samples, m.non_finite), (16 * 12, 0, 0));

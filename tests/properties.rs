@@ -115,7 +115,8 @@ impl DrawTarget for Counter {
     type Error = Infallible;
     fn draw_iter<I: IntoIterator<Item = Pixel<Rgb888>>>(&mut self, pixels: I) -> Result<(), Infallible> {
         for Pixel(p, _) in pixels {
-            let inside = p.x >= 0 && p.y >= 0 && (p.x as u32) < self.size.width && (p.y as u32) < self.size.height;
+            let inside =
+                p.x >= 0 && p.y >= 0 && (p.x as u32) < self.size.width && (p.y as u32) < self.size.height;
             if inside {
                 self.counts[p.y as usize * self.size.width as usize + p.x as usize] += 1;
             } else {
@@ -266,7 +267,12 @@ fn check_parse(text: &str) -> Result<(), TestCaseError> {
             prop_assert!(f.scene.spheres().len() <= 4);
         }
         Err(e) => {
-            prop_assert!(e.field.is_some() || e.line.is_some(), "no field and no line: {:?} for {:?}", e, text);
+            prop_assert!(
+                e.field.is_some() || e.line.is_some(),
+                "no field and no line: {:?} for {:?}",
+                e,
+                text
+            );
             prop_assert!(!e.reason.is_empty());
         }
     }

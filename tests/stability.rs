@@ -11,8 +11,8 @@ use embedded_raytracer::camera::{MAX_FOV, MIN_PIXEL_SIZE};
 use embedded_raytracer::reference::sweeps::{self, *};
 use embedded_raytracer::reference::{self, intersect, D3};
 use embedded_raytracer::{
-    scene_file, Camera, CameraError, CameraParam, CameraParams, Method, Render, Scene, Sphere, SphereTest, Sqrt,
-    Stepping, Vec3,
+    scene_file, Camera, CameraError, CameraParam, CameraParams, Method, Render, Scene, Sphere, SphereTest,
+    Sqrt, Stepping, Vec3,
 };
 
 fn m(stepping: Stepping, test: SphereTest, sqrt: Sqrt) -> Method {
@@ -54,14 +54,20 @@ fn distance_sweep_pins_each_sphere_test() {
         let first = f.first_error.unwrap();
         assert!((177.0..178.0).contains(&first), "{t}/{q} first error at {first}");
         let outright = f.outright.unwrap();
-        assert!((3162.0..3163.0).contains(&outright), "{t}/{q} fails outright at {outright}");
+        assert!(
+            (3162.0..3163.0).contains(&outright),
+            "{t}/{q} fails outright at {outright}"
+        );
     }
     // Geometric with the fast root: the 6 % normalisation error costs pixels at once.
     let f = get(SphereTest::Geometric, Sqrt::Fast);
     assert_eq!(f.first_error, Some(10.0), "{f:?}");
 
     // All-or-nothing beyond ~1e4: every background pixel is classified a hit.
-    for p in points.iter().filter(|p| p.ratio > 17000.0 && p.method.sphere_test != SphereTest::Robust) {
+    for p in points
+        .iter()
+        .filter(|p| p.ratio > 17000.0 && p.method.sphere_test != SphereTest::Robust)
+    {
         let background = p.metrics.pixels - p.sphere_pixels;
         assert_eq!(
             p.metrics.coverage_errors, background,
@@ -79,7 +85,11 @@ fn distance_sweep_pins_each_sphere_test() {
     // The sphere is still ~21 px across at 1e5 (MIN_PIXEL_SIZE limits the zoom).
     let last = points.iter().find(|p| p.ratio == 1e5).unwrap();
     assert!(last.sphere_pixels > 300, "{} px at 1e5", last.sphere_pixels);
-    assert!((20.0..22.0).contains(&last.diameter_px), "{:.1} px", last.diameter_px);
+    assert!(
+        (20.0..22.0).contains(&last.diameter_px),
+        "{:.1} px",
+        last.diameter_px
+    );
 }
 
 /// The same sweep at 256×256 for all 18 methods: the stepping adds nothing here
@@ -120,23 +130,41 @@ fn ground_sweep_distance_and_shade() {
     let methods = sphere_methods();
     let points = ground_sweep(64, &methods);
     assert_eq!(points.len(), GROUND_RADII.len() * 6);
-    let at = |r: f64, t, q| points.iter().find(|p| p.radius == r && p.method == direct(t, q)).unwrap().metrics;
+    let at = |r: f64, t, q| {
+        points
+            .iter()
+            .find(|p| p.radius == r && p.method == direct(t, q))
+            .unwrap()
+            .metrics
+    };
     for p in points.iter().filter(|p| p.method.sqrt == Sqrt::Exact) {
         let x = p.metrics;
         assert_eq!(x.coverage_errors, 0, "{} R={:e}: {x:?}", p.method, p.radius);
         assert_eq!(x.shade_max, 0, "{} R={:e}: {x:?}", p.method, p.radius);
-        assert!(x.agreeing_hits > 1000, "the ground fills most of the image: {x:?}");
+        assert!(
+            x.agreeing_hits > 1000,
+            "the ground fills most of the image: {x:?}"
+        );
     }
     // Robust: hit distance within 1e-3 up to R = 1e4 and from 1e5 beyond it.
     let robust = |r| at(r, SphereTest::Robust, Sqrt::Exact).distance_rel_max;
     assert!(robust(1e4) < 2e-4, "robust R=1e4: {:e}", robust(1e4));
     assert!(robust(1e5) > 1e-3, "robust R=1e5: {:e}", robust(1e5));
-    assert!((1e-2..3e-2).contains(&robust(1e6)), "robust R=1e6: {:e}", robust(1e6));
+    assert!(
+        (1e-2..3e-2).contains(&robust(1e6)),
+        "robust R=1e6: {:e}",
+        robust(1e6)
+    );
     for t in [SphereTest::Algebraic, SphereTest::Geometric] {
         let d = |r| at(r, t, Sqrt::Exact).distance_rel_max;
         assert!(d(1e4) < 1e-3, "{t} R=1e4: {:e}", d(1e4));
         assert!(d(1e5) > 5e-3, "{t} R=1e5: {:e}", d(1e5));
-        assert!(d(1e6) > 3.0 * robust(1e6), "{t} R=1e6: {:e} vs robust {:e}", d(1e6), robust(1e6));
+        assert!(
+            d(1e6) > 3.0 * robust(1e6),
+            "{t} R=1e6: {:e} vs robust {:e}",
+            d(1e6),
+            robust(1e6)
+        );
         // Fast root: sees through the ground (distance off by > 100×) already at R = 100.
         let fast = at(1e2, t, Sqrt::Fast);
         assert!(fast.distance_rel_max > 100.0, "{t}/fast R=100: {fast:?}");
@@ -210,23 +238,47 @@ fn exactly_tangent_ray() {
 fn eye_inside_sees_the_exit() {
     let sphere = Sphere::new(Vec3::new(0.2, -0.1, -0.3), 1.5, Rgb888::WHITE);
     for eye in [Vec3::new(0.2, -0.1, -0.3), Vec3::ZERO, Vec3::new(1.2, -0.1, -0.3)] {
-        for dir in [Vec3::new(0.0, 0.0, -1.0), Vec3::new(0.3, -2.0, 0.5), Vec3::new(-1.0, 0.1, 0.0)] {
-            let truth = intersect(D3::of(eye), D3::of(dir), D3::of(sphere.center), 1.5).t.unwrap();
+        for dir in [
+            Vec3::new(0.0, 0.0, -1.0),
+            Vec3::new(0.3, -2.0, 0.5),
+            Vec3::new(-1.0, 0.1, 0.0),
+        ] {
+            let truth = intersect(D3::of(eye), D3::of(dir), D3::of(sphere.center), 1.5)
+                .t
+                .unwrap();
             for method in sphere_methods() {
-                let t = sphere.intersect(eye, dir, method.sphere_test, method.sqrt).unwrap();
+                let t = sphere
+                    .intersect(eye, dir, method.sphere_test, method.sqrt)
+                    .unwrap();
                 let rel = (f64::from(t) - truth).abs() / truth;
                 let bound = if method.sqrt == Sqrt::Exact { 1e-6 } else { 0.07 };
-                assert!(rel < bound, "{method} eye {eye:?} dir {dir:?}: {t} vs {truth} ({rel:e})");
+                assert!(
+                    rel < bound,
+                    "{method} eye {eye:?} dir {dir:?}: {t} vs {truth} ({rel:e})"
+                );
             }
         }
     }
     // A rendered view from inside: every pixel shows the sphere (its inside, at the
     // 0.3 floor of Lab #1), for the default method.
     let mut scene: Scene<1> = Scene::new(Rgb888::BLACK);
-    scene.push(Sphere::new(Vec3::ZERO, 2.0, Rgb888::new(200, 100, 50))).unwrap();
-    let camera = Camera::new(Vec3::new(0.5, 0.0, 0.0), Vec3::new(0.0, 0.0, -1.0), Vec3::new(0.0, 1.0, 0.0), 1.5, Size::new(32, 24)).unwrap();
+    scene
+        .push(Sphere::new(Vec3::ZERO, 2.0, Rgb888::new(200, 100, 50)))
+        .unwrap();
+    let camera = Camera::new(
+        Vec3::new(0.5, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -1.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        1.5,
+        Size::new(32, 24),
+    )
+    .unwrap();
     let x = measure(&scene, &camera, Method::DEFAULT);
-    assert_eq!((x.coverage_errors, x.agreeing_hits, x.shade_max), (0, 32 * 24, 0), "{x:?}");
+    assert_eq!(
+        (x.coverage_errors, x.agreeing_hits, x.shade_max),
+        (0, 32 * 24, 0),
+        "{x:?}"
+    );
 }
 
 /// The eye exactly on the surface (`c = 0`): rays into the sphere hit the far side,
@@ -242,17 +294,30 @@ fn eye_on_the_surface() {
         let (t, q) = (method.sphere_test, method.sqrt);
         let inward = sphere.intersect(eye, Vec3::new(0.0, 0.0, -1.0), t, q);
         let tol = if q == Sqrt::Exact { 1e-6 } else { 0.13 };
-        assert!(inward.is_some_and(|x| (x - 2.0).abs() < tol), "{method}: {inward:?}");
+        assert!(
+            inward.is_some_and(|x| (x - 2.0).abs() < tol),
+            "{method}: {inward:?}"
+        );
         let oblique = sphere.intersect(eye, Vec3::new(0.6, 0.0, -0.8), t, q);
         // Chord length 2·0.8 = 1.6 for a unit direction.
-        assert!(oblique.is_some_and(|x| (x - 1.6).abs() < tol * 1.6), "{method}: {oblique:?}");
-        assert_eq!(sphere.intersect(eye, Vec3::new(0.0, 0.0, 1.0), t, q), None, "{method} outward");
+        assert!(
+            oblique.is_some_and(|x| (x - 1.6).abs() < tol * 1.6),
+            "{method}: {oblique:?}"
+        );
+        assert_eq!(
+            sphere.intersect(eye, Vec3::new(0.0, 0.0, 1.0), t, q),
+            None,
+            "{method} outward"
+        );
         let tangent = sphere.intersect(eye, Vec3::new(1.0, 0.0, 0.0), t, q);
         match (t, q) {
             // The fast root of 0 is 8.1e-20, not 0: every test then reports a hit at
             // t ≈ 1e-19, i.e. at the eye itself.
             (_, Sqrt::Fast) => {
-                assert!(tangent.is_some_and(|x| x < 1e-19), "{method} tangent at the eye: {tangent:?}")
+                assert!(
+                    tangent.is_some_and(|x| x < 1e-19),
+                    "{method} tangent at the eye: {tangent:?}"
+                )
             }
             _ => assert_eq!(tangent, None, "{method} tangent at the eye"),
         }
@@ -264,12 +329,23 @@ fn eye_on_the_surface() {
 fn spheres_behind_the_eye() {
     let mut scene: Scene<3> = Scene::new(Rgb888::new(1, 2, 3));
     for (z, r) in [(4.0, 1.0), (50.0, 10.0), (1e4, 100.0)] {
-        scene.push(Sphere::new(Vec3::new(0.1, 0.0, z), r, Rgb888::WHITE)).unwrap();
+        scene
+            .push(Sphere::new(Vec3::new(0.1, 0.0, z), r, Rgb888::WHITE))
+            .unwrap();
     }
-    let camera = Camera::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::new(0.0, 1.0, 0.0), 2.5, Size::new(16, 16)).unwrap();
+    let camera = Camera::new(
+        Vec3::ZERO,
+        Vec3::new(0.0, 0.0, -1.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        2.5,
+        Size::new(16, 16),
+    )
+    .unwrap();
     for method in Method::ALL {
         let mut hits = 0;
-        Render::<3, Rgb888>::new(&scene, &camera).with_method(method).trace(|s| hits += usize::from(s.hit.is_some()));
+        Render::<3, Rgb888>::new(&scene, &camera)
+            .with_method(method)
+            .trace(|s| hits += usize::from(s.hit.is_some()));
         assert_eq!(hits, 0, "{method}");
     }
 }
@@ -287,16 +363,30 @@ fn touching_and_interpenetrating_spheres() {
         m(Stepping::Direct, SphereTest::Algebraic, Sqrt::Exact),
         m(Stepping::Direct, SphereTest::Geometric, Sqrt::Exact),
     ] {
-        let x = reference::compare(&Render::<64, Rgb888>::new(&f.scene, &f.camera).with_method(method), &truth);
+        let x = reference::compare(
+            &Render::<64, Rgb888>::new(&f.scene, &f.camera).with_method(method),
+            &truth,
+        );
         assert_eq!(x.coverage_errors, 0, "{method}: {x:?}");
         assert!(x.shade_max <= 1, "{method}: {x:?}");
     }
     // Touching exactly, seen side on through the contact point: a depth tie the
     // reference cannot decide; the kernel picks the first sphere (strict `t < t_max`).
     let mut scene: Scene<2> = Scene::new(Rgb888::BLACK);
-    scene.push(Sphere::new(Vec3::new(-1.0, 0.0, 0.0), 1.0, Rgb888::RED)).unwrap();
-    scene.push(Sphere::new(Vec3::new(1.0, 0.0, 0.0), 1.0, Rgb888::GREEN)).unwrap();
-    let camera = Camera::new(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), 0.5, Size::new(1, 1)).unwrap();
+    scene
+        .push(Sphere::new(Vec3::new(-1.0, 0.0, 0.0), 1.0, Rgb888::RED))
+        .unwrap();
+    scene
+        .push(Sphere::new(Vec3::new(1.0, 0.0, 0.0), 1.0, Rgb888::GREEN))
+        .unwrap();
+    let camera = Camera::new(
+        Vec3::new(0.0, 0.0, 10.0),
+        Vec3::ZERO,
+        Vec3::new(0.0, 1.0, 0.0),
+        0.5,
+        Size::new(1, 1),
+    )
+    .unwrap();
     let truth = reference::render(&scene, &camera);
     assert_eq!(truth.undecidable(), 1);
     let x = measure(&scene, &camera, Method::DEFAULT);
@@ -328,14 +418,32 @@ fn stepping_drift_against_eye_distance_and_resolution() {
             .drift
     };
     // WorldSpace: the failure points.
-    assert_eq!(first_pixel_drift(&points, Stepping::WorldSpace, 1920), Some(100.0));
-    assert!(at(Stepping::WorldSpace, 1920, 10.0, false) < 1.0, "{}", at(Stepping::WorldSpace, 1920, 10.0, false));
-    assert!(at(Stepping::WorldSpace, 1920, 100.0, false) >= 1.0, "{}", at(Stepping::WorldSpace, 1920, 100.0, false));
+    assert_eq!(
+        first_pixel_drift(&points, Stepping::WorldSpace, 1920),
+        Some(100.0)
+    );
+    assert!(
+        at(Stepping::WorldSpace, 1920, 10.0, false) < 1.0,
+        "{}",
+        at(Stepping::WorldSpace, 1920, 10.0, false)
+    );
+    assert!(
+        at(Stepping::WorldSpace, 1920, 100.0, false) >= 1.0,
+        "{}",
+        at(Stepping::WorldSpace, 1920, 100.0, false)
+    );
     assert_eq!(first_pixel_drift(&points, Stepping::WorldSpace, 4096), Some(10.0));
-    assert_eq!(first_pixel_drift(&points, Stepping::WorldSpace, 256), Some(1000.0));
+    assert_eq!(
+        first_pixel_drift(&points, Stepping::WorldSpace, 256),
+        Some(1000.0)
+    );
     assert!(at(Stepping::WorldSpace, 8192, 1e4, false) > 8000.0);
     // Even at the origin, 8192 scanline steps of a column drift 1.5 px.
-    assert!(at(Stepping::WorldSpace, 8192, 0.0, true) > 1.0, "{}", at(Stepping::WorldSpace, 8192, 0.0, true));
+    assert!(
+        at(Stepping::WorldSpace, 8192, 0.0, true) > 1.0,
+        "{}",
+        at(Stepping::WorldSpace, 8192, 0.0, true)
+    );
 
     // Incremental: independent of |eye|, under a pixel at 8192.
     for n in DRIFT_PIXELS {
@@ -347,7 +455,10 @@ fn stepping_drift_against_eye_distance_and_resolution() {
     }
     let inc = max_drift(&points, Stepping::Incremental);
     assert!(inc < 0.5, "Incremental max drift {inc} px");
-    assert!(at(Stepping::Incremental, 8192, 0.0, false) > 0.4, "row accumulation is real");
+    assert!(
+        at(Stepping::Incremental, 8192, 0.0, false) > 0.4,
+        "row accumulation is real"
+    );
     assert!(at(Stepping::Incremental, 1920, 0.0, false) < 0.03);
     // Direct: bounded by a few f32 roundings of |d| ≈ 1.
     let dir = max_drift(&points, Stepping::Direct);
@@ -365,11 +476,17 @@ fn narrow_fov_drift() {
     let (inc_oblique, inc_aligned) = sweeps::narrow_fov_drift(8192, Stepping::Incremental);
     let (inc_oblique, inc_aligned) = (inc_oblique.unwrap(), inc_aligned.unwrap());
     assert!(inc_oblique > 10.0, "Incremental, oblique, 8192: {inc_oblique} px");
-    assert!(inc_aligned < 0.1, "Incremental, axis-aligned, 8192: {inc_aligned} px");
+    assert!(
+        inc_aligned < 0.1,
+        "Incremental, axis-aligned, 8192: {inc_aligned} px"
+    );
     let inc_1024 = sweeps::narrow_fov_drift(1024, Stepping::Incremental).0.unwrap();
     assert!(inc_1024 > 1.0, "Incremental, oblique, 1024: {inc_1024} px");
     let inc_64 = sweeps::narrow_fov_drift(64, Stepping::Incremental).0.unwrap();
-    assert!((0.1..1.0).contains(&inc_64), "Incremental, oblique, 64: {inc_64} px");
+    assert!(
+        (0.1..1.0).contains(&inc_64),
+        "Incremental, oblique, 64: {inc_64} px"
+    );
     for n in [64, 1024, 8192] {
         let (o, a) = sweeps::narrow_fov_drift(n, Stepping::Direct);
         assert!(o.unwrap() < 0.05 && a.unwrap() < 0.01, "Direct {n}: {o:?} {a:?}");
@@ -392,7 +509,12 @@ fn fast_sqrt_cost_per_sphere_test() {
     let grazing = load("grazing");
     for (name, f) in [("lab", &lab), ("grazing", &grazing)] {
         let truth = reference::render(&f.scene, &f.camera);
-        let run = |t, q| reference::compare(&Render::<64, Rgb888>::new(&f.scene, &f.camera).with_method(direct(t, q)), &truth);
+        let run = |t, q| {
+            reference::compare(
+                &Render::<64, Rgb888>::new(&f.scene, &f.camera).with_method(direct(t, q)),
+                &truth,
+            )
+        };
         for t in [SphereTest::Algebraic, SphereTest::Geometric, SphereTest::Robust] {
             let (exact, fast) = (run(t, Sqrt::Exact), run(t, Sqrt::Fast));
             assert_eq!(exact.coverage_errors, 0, "{name} {t}/exact: {exact:?}");
@@ -412,7 +534,9 @@ fn fast_sqrt_cost_per_sphere_test() {
                     assert!(fast.coverage_errors > 200, "{name} {t}/fast: {fast:?}");
                     assert!(fast.distance_rel_max > 10.0, "{name} {t}/fast: {fast:?}");
                 }
-                (_, SphereTest::Geometric) => assert!(fast.coverage_errors > 1000, "{name} {t}/fast: {fast:?}"),
+                (_, SphereTest::Geometric) => {
+                    assert!(fast.coverage_errors > 1000, "{name} {t}/fast: {fast:?}")
+                }
                 _ => unreachable!(),
             }
         }
@@ -430,10 +554,17 @@ fn up_near_the_view_direction() {
     let points = up_angle_sweep();
     for p in &points {
         if p.angle > 1e-3 {
-            let drift = p.result.unwrap_or_else(|e| panic!("angle {:e} refused: {e}", p.angle));
+            let drift = p
+                .result
+                .unwrap_or_else(|e| panic!("angle {:e} refused: {e}", p.angle));
             assert!(drift < 1e-3, "angle {:e}: drift {drift}", p.angle);
         } else {
-            assert_eq!(p.result, Err(CameraError::UpParallelToView), "angle {:e}", p.angle);
+            assert_eq!(
+                p.result,
+                Err(CameraError::UpParallelToView),
+                "angle {:e}",
+                p.angle
+            );
         }
     }
     assert!(points.iter().any(|p| p.angle == 1e-7));
@@ -441,8 +572,20 @@ fn up_near_the_view_direction() {
 
 fn sphere_scene() -> Scene<2> {
     let mut scene = Scene::new(Rgb888::new(0, 0, 40));
-    scene.push(Sphere::new(Vec3::new(0.0, 0.0, -10.0), 1.0, Rgb888::new(255, 64, 64))).unwrap();
-    scene.push(Sphere::new(Vec3::new(0.3, 0.2, -9.0), 0.4, Rgb888::new(64, 255, 64))).unwrap();
+    scene
+        .push(Sphere::new(
+            Vec3::new(0.0, 0.0, -10.0),
+            1.0,
+            Rgb888::new(255, 64, 64),
+        ))
+        .unwrap();
+    scene
+        .push(Sphere::new(
+            Vec3::new(0.3, 0.2, -9.0),
+            0.4,
+            Rgb888::new(64, 255, 64),
+        ))
+        .unwrap();
     scene
 }
 
@@ -453,7 +596,13 @@ fn sphere_scene() -> Scene<2> {
 fn fov_near_its_limits() {
     let scene = sphere_scene();
     let base = |fov: f32| {
-        CameraParams::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::new(0.0, 1.0, 0.0), fov, Size::new(64, 64))
+        CameraParams::new(
+            Vec3::ZERO,
+            Vec3::new(0.0, 0.0, -1.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            fov,
+            Size::new(64, 64),
+        )
     };
     // Narrowest: the sphere's centre is 10 away, so the image shows 6e-4 of it.
     let narrow = fov_for_pixel(f64::from(MIN_PIXEL_SIZE) * 1.01, 64);
@@ -464,7 +613,10 @@ fn fov_near_its_limits() {
         assert!(x.drift_max < 0.1, "{method} at fov {narrow}: {x:?}");
     }
     let too_narrow = fov_for_pixel(f64::from(MIN_PIXEL_SIZE) * 0.99, 64);
-    assert_eq!(base(too_narrow).build(), Err(CameraError::FovTooNarrow(CameraParam::FovY)));
+    assert_eq!(
+        base(too_narrow).build(),
+        Err(CameraError::FovTooNarrow(CameraParam::FovY))
+    );
 
     let camera = base(MAX_FOV).build().unwrap();
     for method in [Method::DEFAULT, direct(SphereTest::Robust, Sqrt::Exact)] {
@@ -472,8 +624,14 @@ fn fov_near_its_limits() {
         assert_eq!(x.coverage_errors, 0, "{method} at 179°: {x:?}");
         assert!(x.shade_max <= 1 && x.drift_max < 1e-3, "{method} at 179°: {x:?}");
     }
-    assert_eq!(base(179.5f32.to_radians()).build(), Err(CameraError::FovOutOfRange(CameraParam::FovY)));
-    assert_eq!(base(0.0).build(), Err(CameraError::FovOutOfRange(CameraParam::FovY)));
+    assert_eq!(
+        base(179.5f32.to_radians()).build(),
+        Err(CameraError::FovOutOfRange(CameraParam::FovY))
+    );
+    assert_eq!(
+        base(0.0).build(),
+        Err(CameraError::FovOutOfRange(CameraParam::FovY))
+    );
 }
 
 /// Non-square pixels (fov_x given), 1×1 and 1×N / N×1 images: every pixel once, no
@@ -482,7 +640,13 @@ fn fov_near_its_limits() {
 fn odd_shapes() {
     let scene = sphere_scene();
     let look = |size: Size| {
-        CameraParams::new(Vec3::new(0.5, 0.4, 0.0), Vec3::new(0.0, 0.0, -10.0), Vec3::new(0.0, 1.0, 0.0), 0.3, size)
+        CameraParams::new(
+            Vec3::new(0.5, 0.4, 0.0),
+            Vec3::new(0.0, 0.0, -10.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            0.3,
+            size,
+        )
     };
     let cases = [
         look(Size::new(48, 32)).with_fov_x(0.8),
@@ -496,7 +660,12 @@ fn odd_shapes() {
         for method in Method::ALL {
             let x = measure(&scene, &camera, method);
             let n = (params.size.width * params.size.height) as usize;
-            assert_eq!((x.pixels, x.bad_samples, x.non_finite), (n, 0, 0), "{method} {:?}", params.size);
+            assert_eq!(
+                (x.pixels, x.bad_samples, x.non_finite),
+                (n, 0, 0),
+                "{method} {:?}",
+                params.size
+            );
             // Geometric with the fast root fails everywhere (see the distance sweep).
             if (method.sphere_test, method.sqrt) != (SphereTest::Geometric, Sqrt::Fast) {
                 assert_eq!(x.coverage_errors, 0, "{method} {:?}: {x:?}", params.size);
@@ -519,7 +688,12 @@ fn odd_shapes() {
 fn standard_scene(name: &str) {
     let f = load(name);
     let truth = reference::render(&f.scene, &f.camera);
-    let run = |method| reference::compare(&Render::<64, Rgb888>::new(&f.scene, &f.camera).with_method(method), &truth);
+    let run = |method| {
+        reference::compare(
+            &Render::<64, Rgb888>::new(&f.scene, &f.camera).with_method(method),
+            &truth,
+        )
+    };
     let best = run(direct(SphereTest::Robust, Sqrt::Exact));
     assert_eq!(best.coverage_errors, 0, "{name} direct/robust/exact: {best:?}");
     assert!(best.shade_max <= 1, "{name} direct/robust/exact: {best:?}");

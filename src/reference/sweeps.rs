@@ -43,7 +43,10 @@ pub fn fov_for_pixel(pixel: f64, height: u32) -> f32 {
 #[must_use]
 pub fn measure<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method) -> Metrics {
     let truth = render(scene, camera);
-    compare(&Render::<N, Rgb888>::new(scene, camera).with_method(method), &truth)
+    compare(
+        &Render::<N, Rgb888>::new(scene, camera).with_method(method),
+        &truth,
+    )
 }
 
 /// One sphere and a camera looking straight at it.
@@ -91,12 +94,21 @@ pub fn distance_sweep(size: u32, methods: &[Method]) -> Vec<DistancePoint> {
         // silhouette is not symmetric about pixel centres.
         let off = (0.37 * pixel * ratio) as f32;
         let scene = one_sphere(Vec3::new(off, off * 0.5, -(ratio as f32)), 1.0);
-        let Ok(camera) = Camera::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::new(0.0, 1.0, 0.0), fov, Size::new(size, size)) else {
+        let Ok(camera) = Camera::new(
+            Vec3::ZERO,
+            Vec3::new(0.0, 0.0, -1.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            fov,
+            Size::new(size, size),
+        ) else {
             continue;
         };
         let truth = render(&scene, &camera);
         for &method in methods {
-            let metrics = compare(&Render::<1, Rgb888>::new(&scene, &camera).with_method(method), &truth);
+            let metrics = compare(
+                &Render::<1, Rgb888>::new(&scene, &camera).with_method(method),
+                &truth,
+            );
             out.push(DistancePoint {
                 ratio,
                 method,
@@ -187,8 +199,15 @@ pub fn ground_sweep(size: u32, methods: &[Method]) -> Vec<GroundPoint> {
         };
         let truth = render(&scene, &camera);
         for &method in methods {
-            let metrics = compare(&Render::<1, Rgb888>::new(&scene, &camera).with_method(method), &truth);
-            out.push(GroundPoint { radius, method, metrics });
+            let metrics = compare(
+                &Render::<1, Rgb888>::new(&scene, &camera).with_method(method),
+                &truth,
+            );
+            out.push(GroundPoint {
+                radius,
+                method,
+                metrics,
+            });
         }
     }
     out
@@ -239,7 +258,13 @@ pub fn drift_of(params: CameraParams, stepping: Stepping) -> Option<f64> {
     let empty: Scene<1> = Scene::new(Rgb888::BLACK);
     let truth = render_params(&empty, camera.params())?;
     let method = Method::new(stepping, SphereTest::Robust, Sqrt::Exact);
-    Some(compare(&Render::<1, Rgb888>::new(&empty, &camera).with_method(method), &truth).drift_max)
+    Some(
+        compare(
+            &Render::<1, Rgb888>::new(&empty, &camera).with_method(method),
+            &truth,
+        )
+        .drift_max,
+    )
 }
 
 /// Stepping drift against the eye's distance from the origin and the image length,
@@ -282,7 +307,13 @@ pub fn narrow_fov_drift(n: u32, stepping: Stepping) -> (Option<f64>, Option<f64>
     let fov_y = fov_for_pixel(pixel, 1);
     let oblique = drift_of(oblique_params(0.0, fov_y, size), stepping);
     let aligned = drift_of(
-        CameraParams::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::new(0.0, 1.0, 0.0), fov_y, size),
+        CameraParams::new(
+            Vec3::ZERO,
+            Vec3::new(0.0, 0.0, -1.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            fov_y,
+            size,
+        ),
         stepping,
     );
     (oblique, aligned)

@@ -41,7 +41,7 @@
 //!
 //! ## Features
 //!
-//! - `std` (default): [`scene_file`] (TOML scene files), [`reference`] (the `f64`
+//! - `std` (default): [`scene_file`] (TOML scene files), [`reference`](mod@reference) (the `f64`
 //!   reference renderer, error metrics and stability sweeps) and host tooling. Inert on
 //!   bare-metal targets (`target_os = "none"`); use `default-features = false` in
 //!   firmware to make that explicit.

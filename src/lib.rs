@@ -46,7 +46,8 @@
 //!
 //! ## Features
 //!
-//! - `std` (default): [`scene_file`] (TOML scene files) and host tooling. Inert on
+//! - `std` (default): [`scene_file`] (TOML scene files), [`reference`](mod@reference) (the `f64`
+//!   reference renderer, error metrics and stability sweeps) and host tooling. Inert on
 //!   bare-metal targets (`target_os = "none"`); use `default-features = false` in
 //!   firmware to make that explicit.
 //! - `window`: the desktop preview example (`examples/simulator.rs`, SDL2 through
@@ -80,6 +81,8 @@ pub mod dither;
 pub mod error;
 pub mod hash;
 pub mod math;
+#[cfg(host_std)]
+pub mod reference;
 pub mod render;
 pub mod scene;
 #[cfg(host_std)]

@@ -40,7 +40,18 @@ mod fw {
     /// The camera's inputs, read at run time: eye, look-at, up (x, y, z each), vertical
     /// field of view in radians — `scenes/lab.toml`'s camera, so the hash equals the
     /// `lab incremental/robust/exact` line of `qemu_cortex_m4` (`.ci/firmware` checks).
-    static INPUTS: [f32; 10] = [0.0, 0.0, 5.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 60.0 * (core::f32::consts::PI / 180.0)];
+    static INPUTS: [f32; 10] = [
+        0.0,
+        0.0,
+        5.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+        0.0,
+        60.0 * (core::f32::consts::PI / 180.0),
+    ];
     static SIZE: [u32; 2] = [240, 240];
     /// Where the result goes: the hash, or 0 if the camera was rejected.
     static mut RESULT: u64 = 0;
@@ -82,7 +93,11 @@ mod fw {
             *digit = b"0123456789abcdef".get(nibble as usize).copied().unwrap_or(b'?');
         }
         write0(&line);
-        debug::exit(if stored != 0 { debug::EXIT_SUCCESS } else { debug::EXIT_FAILURE });
+        debug::exit(if stored != 0 {
+            debug::EXIT_SUCCESS
+        } else {
+            debug::EXIT_FAILURE
+        });
         loop {
             cortex_m::asm::wfi();
         }

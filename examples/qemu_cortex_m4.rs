@@ -228,13 +228,29 @@ mod fw {
                 let (hw, sw) = (math::sqrt_exact(x), math::sqrt_libm(x));
                 if hw.to_bits() != sw.to_bits() && !(hw.is_nan() && sw.is_nan()) {
                     if mismatches < 5 {
-                        hprintln!("sqrt mismatch {:#010x}: vsqrt {:#010x} libm {:#010x}", x.to_bits(), hw.to_bits(), sw.to_bits());
+                        hprintln!(
+                            "sqrt mismatch {:#010x}: vsqrt {:#010x} libm {:#010x}",
+                            x.to_bits(),
+                            hw.to_bits(),
+                            sw.to_bits()
+                        );
                     }
                     mismatches += 1;
                 }
                 inputs += 1;
             };
-            for x in [0.0, -0.0, 1.0, 2.0, 4.0, f32::MIN_POSITIVE, f32::MAX, f32::INFINITY, f32::NAN, -1.0] {
+            for x in [
+                0.0,
+                -0.0,
+                1.0,
+                2.0,
+                4.0,
+                f32::MIN_POSITIVE,
+                f32::MAX,
+                f32::INFINITY,
+                f32::NAN,
+                -1.0,
+            ] {
                 check(x);
             }
             let mut bits = 0u32;
@@ -254,7 +270,13 @@ mod fw {
             let instr = timed(self.overhead, || sink_only(&mut hash));
             let pixels = hash.pixels();
             let ipp10 = (instr * 10 + pixels / 2) / pixels.max(1);
-            hprintln!("sink pixelhash pixels {} instr {} ipp {}.{}", pixels, instr, ipp10 / 10, ipp10 % 10);
+            hprintln!(
+                "sink pixelhash pixels {} instr {} ipp {}.{}",
+                pixels,
+                instr,
+                ipp10 / 10,
+                ipp10 % 10
+            );
         }
 
         /// Every method on one scene at 240×240: hash, pixels, instructions, stack.
@@ -328,8 +350,17 @@ mod fw {
             overhead,
             failures: 0,
         };
-        hprintln!("qemu_cortex_m4: every standard scene at {}x{} (its own camera, size replaced), every method", SIZE.width, SIZE.height);
-        hprintln!("clock {} Hz instructions = ticks * 1e9 / {} overhead_ticks {}", F_CLK_HZ, F_CLK_HZ, overhead);
+        hprintln!(
+            "qemu_cortex_m4: every standard scene at {}x{} (its own camera, size replaced), every method",
+            SIZE.width,
+            SIZE.height
+        );
+        hprintln!(
+            "clock {} Hz instructions = ticks * 1e9 / {} overhead_ticks {}",
+            F_CLK_HZ,
+            F_CLK_HZ,
+            overhead
+        );
         run.calibrate(1_000_000); // 2 M instructions: no SysTick wrap
         run.calibrate(100_000_000); // 200 M instructions: 2 wraps
         run.check_sqrt();

@@ -114,7 +114,8 @@ mod fw {
         loop {
             // Orbit the lab camera's eye around the look-at point (about +y).
             let (s, c) = (libm::sinf(angle), libm::cosf(angle));
-            let eye = lab.look_at + Vec3::new(c * offset.x + s * offset.z, offset.y, c * offset.z - s * offset.x);
+            let eye =
+                lab.look_at + Vec3::new(c * offset.x + s * offset.z, offset.y, c * offset.z - s * offset.x);
             let start = DWT::cycle_count();
             if let Ok(camera) = Camera::new(eye, lab.look_at, lab.up, lab.fov_y, size) {
                 // Rgb888 → Rgb565 inferred from the display.
@@ -122,8 +123,13 @@ mod fw {
             }
             let cycles = DWT::cycle_count().wrapping_sub(start);
             let mut label = heapless::String::<32>::new();
-            let _ = write!(label, "frame {} ms", u64::from(cycles) * 1000 / u64::from(sysclk_hz));
-            let _ = Text::with_baseline(&label, Point::new(2, 2), text_style, Baseline::Top).draw(&mut display);
+            let _ = write!(
+                label,
+                "frame {} ms",
+                u64::from(cycles) * 1000 / u64::from(sysclk_hz)
+            );
+            let _ =
+                Text::with_baseline(&label, Point::new(2, 2), text_style, Baseline::Top).draw(&mut display);
             angle = (angle + STEP) % (2.0 * core::f32::consts::PI);
         }
     }

@@ -20,14 +20,19 @@ use qemu_output::QemuOutput;
 const SIZE: Size = Size::new(240, 240);
 
 fn firmware_output() -> (String, QemuOutput) {
-    let path = std::env::var("FIRMWARE_QEMU_OUTPUT").unwrap_or_else(|_| "tests/data/qemu_cortex_m4.txt".into());
+    let path =
+        std::env::var("FIRMWARE_QEMU_OUTPUT").unwrap_or_else(|_| "tests/data/qemu_cortex_m4.txt".into());
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
     let output = QemuOutput::parse(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
     (path, output)
 }
 
 /// `(scene, method, hash, pixels)` for every method on one scene, on the host.
-fn host<const N: usize>(name: &str, scene: &Scene<N>, params: CameraParams) -> Vec<(String, String, u64, u64)> {
+fn host<const N: usize>(
+    name: &str,
+    scene: &Scene<N>,
+    params: CameraParams,
+) -> Vec<(String, String, u64, u64)> {
     let camera = CameraParams { size: SIZE, ..params }.build().unwrap();
     Method::ALL
         .iter()
@@ -51,7 +56,11 @@ fn firmware_pixels_equal_the_hosts() {
 
     let mut differences = Vec::new();
     for (scene, method, hash, pixels) in &host_entries {
-        assert_eq!(*pixels, u64::from(SIZE.width * SIZE.height), "{scene} {method}: host pixel count");
+        assert_eq!(
+            *pixels,
+            u64::from(SIZE.width * SIZE.height),
+            "{scene} {method}: host pixel count"
+        );
         match firmware.get(scene, method) {
             None => differences.push(format!("{scene} {method}: missing from the firmware output")),
             Some(e) if (e.hash, e.pixels) != (*hash, *pixels) => differences.push(format!(
@@ -62,7 +71,11 @@ fn firmware_pixels_equal_the_hosts() {
         }
     }
     assert_eq!(firmware.entries.len(), host_entries.len(), "{path}: entry count");
-    assert!(differences.is_empty(), "{path}: host and firmware differ:\n{}", differences.join("\n"));
+    assert!(
+        differences.is_empty(),
+        "{path}: host and firmware differ:\n{}",
+        differences.join("\n")
+    );
 }
 
 #[test]

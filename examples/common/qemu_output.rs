@@ -56,7 +56,11 @@ impl std::error::Error for ParseError {}
 
 /// The value after `key` in a whitespace-separated `key value` list.
 fn field<'a>(words: &[&'a str], key: &str) -> Option<&'a str> {
-    words.iter().position(|w| *w == key).and_then(|i| words.get(i + 1)).copied()
+    words
+        .iter()
+        .position(|w| *w == key)
+        .and_then(|i| words.get(i + 1))
+        .copied()
 }
 
 fn number(words: &[&str], key: &str) -> Option<u64> {
@@ -77,7 +81,8 @@ impl QemuOutput {
             let words: Vec<&str> = line.split_whitespace().collect();
             match words.first().copied() {
                 Some("hash") => {
-                    let (Some(scene), Some(method), Some(hex)) = (words.get(1), words.get(2), words.get(3)) else {
+                    let (Some(scene), Some(method), Some(hex)) = (words.get(1), words.get(2), words.get(3))
+                    else {
                         return Err(err("expected `hash SCENE METHOD 0xHASH ...`"));
                     };
                     let hash = hex
@@ -119,7 +124,9 @@ impl QemuOutput {
 
     /// The entry for `scene` and `method`, if printed.
     pub fn get(&self, scene: &str, method: &str) -> Option<&Entry> {
-        self.entries.iter().find(|e| e.scene == scene && e.method == method)
+        self.entries
+            .iter()
+            .find(|e| e.scene == scene && e.method == method)
     }
 }
 

@@ -53,7 +53,15 @@
     clippy::indexing_slicing
 )]
 // Tests may unwrap and index: a panic there is a failed test, not a kernel panic.
-#![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing))]
+#![cfg_attr(
+    test,
+    allow(
+        clippy::unwrap_used,
+        clippy::expect_used,
+        clippy::panic,
+        clippy::indexing_slicing
+    )
+)]
 // `!(x >= bound)` is deliberate throughout: it rejects NaN along with out-of-range values.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
@@ -68,6 +76,7 @@ pub mod scene;
 #[cfg(host_std)]
 pub mod scene_file;
 pub mod shade;
+mod span;
 pub mod sphere;
 pub mod vec3;
 

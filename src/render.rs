@@ -19,9 +19,12 @@ use heapless::Vec;
 use crate::camera::Camera;
 use crate::error::ParseMethodError;
 use crate::math::{ExactSqrt, FastSqrt, SqrtFn};
-use crate::scene::{closest, Hit, Scene};
+use crate::scene::{Hit, Scene};
 use crate::shade;
-use crate::sphere::{Algebraic, Geometric, HitTest, Robust, SphereConsts};
+use crate::span::{Margin, Silhouette};
+use crate::sphere::{
+    Algebraic, Auto, ForwardDiff, Geometric, Robust, RowTest, SphereConsts, FD_ANCHOR_INTERVAL,
+};
 use crate::vec3::Vec3;
 
 /// How the ray direction `p − eye` advances from pixel to pixel.
@@ -50,6 +53,20 @@ pub enum SphereTest {
     Geometric,
     /// Haines et al.'s robust discriminant and stable roots (see [`Sphere::intersect_robust`](crate::Sphere::intersect_robust)).
     Robust,
+    /// The robust test's discriminant `a·r² − |L × d|²` and `b = L·d` forward-differenced
+    /// along each scanline (three additions per sphere and pixel), re-anchored by direct
+    /// evaluation at each span start and every [`FD_ANCHOR_INTERVAL`](crate::sphere::FD_ANCHOR_INTERVAL)
+    /// columns. Error bound: a silhouette edge moves by at most `2⁻²⁴·K·(R + 2K)` pixels
+    /// (`R` the sphere's radius on screen in pixels, `K` the anchor interval), on top of
+    /// the robust test's own error. A single-ray query ([`Sphere::intersect`](crate::Sphere::intersect))
+    /// is an anchor, i.e. evaluated directly.
+    ForwardDiff,
+    /// Adaptive: per sphere and frame, `ForwardDiff` where its error bound moves an edge
+    /// by at most 1/16 pixel (`2⁻²⁴·K·(R + 2K) ≤ 1/16`, the eye outside the sphere),
+    /// `Robust` otherwise. The slides' algebraic and geometric tests are never chosen:
+    /// they are dearer per pixel than forward differences and fail from
+    /// distance/radius ≈ 100. Single-ray queries behave as `ForwardDiff`.
+    Auto,
 }
 
 /// Which square root the pixel loop uses.
@@ -104,14 +121,20 @@ impl Method {
     /// Every combination, for charts and sweeps.
     // Indexing in a const initialiser is checked at compile time.
     #[allow(clippy::indexing_slicing)]
-    pub const ALL: [Method; 18] = {
+    pub const ALL: [Method; 30] = {
         let steppings = [Stepping::WorldSpace, Stepping::Incremental, Stepping::Direct];
-        let tests = [SphereTest::Algebraic, SphereTest::Geometric, SphereTest::Robust];
+        let tests = [
+            SphereTest::Algebraic,
+            SphereTest::Geometric,
+            SphereTest::Robust,
+            SphereTest::ForwardDiff,
+            SphereTest::Auto,
+        ];
         let sqrts = [Sqrt::Exact, Sqrt::Fast];
-        let mut all = [Method::DEFAULT; 18];
+        let mut all = [Method::DEFAULT; 30];
         let mut k = 0;
-        while k < 18 {
-            all[k] = Method::new(steppings[k / 6], tests[(k / 2) % 3], sqrts[k % 2]);
+        while k < 30 {
+            all[k] = Method::new(steppings[k / 10], tests[(k / 2) % 5], sqrts[k % 2]);
             k += 1;
         }
         all
@@ -152,7 +175,7 @@ macro_rules! named_enum {
 }
 
 named_enum!(Stepping, "stepping", WorldSpace => "world-space", Incremental => "incremental", Direct => "direct");
-named_enum!(SphereTest, "sphere test", Algebraic => "algebraic", Geometric => "geometric", Robust => "robust");
+named_enum!(SphereTest, "sphere test", Algebraic => "algebraic", Geometric => "geometric", Robust => "robust", ForwardDiff => "forward-diff", Auto => "auto");
 named_enum!(Sqrt, "sqrt", Exact => "exact", Fast => "fast");
 
 impl fmt::Display for Method {
@@ -202,6 +225,7 @@ pub struct Render<'a, const N: usize, C = Rgb888> {
     scene: &'a Scene<N>,
     camera: &'a Camera,
     method: Method,
+    options: Options,
     offset: Point,
     color: PhantomData<C>,
 }
@@ -214,6 +238,7 @@ impl<'a, const N: usize, C> Render<'a, N, C> {
             scene,
             camera,
             method: Method::DEFAULT,
+            options: Options::DEFAULT,
             offset: Point::zero(),
             color: PhantomData,
         }
@@ -231,6 +256,26 @@ impl<'a, const N: usize, C> Render<'a, N, C> {
     #[must_use]
     pub const fn with_offset(mut self, offset: Point) -> Self {
         self.offset = offset;
+        self
+    }
+
+    /// The same render with span culling on (the default) or off. Off, every sphere is
+    /// tested at every pixel — the seed's algorithm taken literally, for the benchmark
+    /// baseline and the tests that prove culling changes no pixel.
+    #[doc(hidden)]
+    #[must_use]
+    pub const fn with_span_culling(mut self, on: bool) -> Self {
+        self.options.culling = on;
+        self
+    }
+
+    /// The same render with another anchor interval K for the forward-differenced
+    /// test (default [`FD_ANCHOR_INTERVAL`]; `0` is taken as 1). For the measurement
+    /// of the error against K.
+    #[doc(hidden)]
+    #[must_use]
+    pub const fn with_anchor_interval(mut self, k: u32) -> Self {
+        self.options.anchor = if k == 0 { 1 } else { k };
         self
     }
 
@@ -256,6 +301,7 @@ impl<'a, const N: usize, C> Render<'a, N, C> {
             self.scene,
             self.camera,
             self.method,
+            self.options,
             full,
             Point::zero(),
             &mut sink,
@@ -279,7 +325,15 @@ where
             target,
             color: PhantomData,
         };
-        dispatch(self.scene, self.camera, self.method, clip, self.offset, &mut sink)
+        dispatch(
+            self.scene,
+            self.camera,
+            self.method,
+            self.options,
+            clip,
+            self.offset,
+            &mut sink,
+        )
     }
 }
 
@@ -313,17 +367,32 @@ impl<F: FnMut(Sample)> RowSink for TraceSink<'_, F> {
     }
 }
 
+/// Per-frame render options besides the method (culling, anchor interval).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Options {
+    culling: bool,
+    anchor: u32,
+}
+
+impl Options {
+    const DEFAULT: Options = Options {
+        culling: true,
+        anchor: FD_ANCHOR_INTERVAL,
+    };
+}
+
 /// The once-per-frame `match` on the method, down to a monomorphised frame loop.
 fn dispatch<const N: usize, K: RowSink>(
     scene: &Scene<N>,
     camera: &Camera,
     method: Method,
+    options: Options,
     clip: Rectangle,
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
     fn with_test<const N: usize, K: RowSink, S: Stepper>(
-        f: Frame<'_, N>,
+        f: &mut Frame<'_, N>,
         method: Method,
         sink: &mut K,
     ) -> Result<(), K::Error> {
@@ -331,10 +400,12 @@ fn dispatch<const N: usize, K: RowSink>(
             SphereTest::Algebraic => with_sqrt::<N, K, S, Algebraic>(f, method, sink),
             SphereTest::Geometric => with_sqrt::<N, K, S, Geometric>(f, method, sink),
             SphereTest::Robust => with_sqrt::<N, K, S, Robust>(f, method, sink),
+            SphereTest::ForwardDiff => with_sqrt::<N, K, S, ForwardDiff>(f, method, sink),
+            SphereTest::Auto => with_sqrt::<N, K, S, Auto>(f, method, sink),
         }
     }
-    fn with_sqrt<const N: usize, K: RowSink, S: Stepper, T: HitTest>(
-        f: Frame<'_, N>,
+    fn with_sqrt<const N: usize, K: RowSink, S: Stepper, T: RowTest>(
+        f: &mut Frame<'_, N>,
         method: Method,
         sink: &mut K,
     ) -> Result<(), K::Error> {
@@ -344,20 +415,31 @@ fn dispatch<const N: usize, K: RowSink>(
         }
     }
 
-    let Some(frame) = Frame::new(scene, camera, clip, offset) else {
+    let step_err = match method.stepping {
+        Stepping::WorldSpace => WorldSpaceStep::error_bound(camera),
+        Stepping::Incremental => IncrementalStep::error_bound(camera),
+        Stepping::Direct => DirectStep::error_bound(camera),
+    };
+    let Some(mut frame) = Frame::new(scene, camera, method, options, step_err, clip, offset) else {
         return Ok(()); // nothing visible
     };
     match method.stepping {
-        Stepping::WorldSpace => with_test::<N, K, WorldSpaceStep>(frame, method, sink),
-        Stepping::Incremental => with_test::<N, K, IncrementalStep>(frame, method, sink),
-        Stepping::Direct => with_test::<N, K, DirectStep>(frame, method, sink),
+        Stepping::WorldSpace => with_test::<N, K, WorldSpaceStep>(&mut frame, method, sink),
+        Stepping::Incremental => with_test::<N, K, IncrementalStep>(&mut frame, method, sink),
+        Stepping::Direct => with_test::<N, K, DirectStep>(&mut frame, method, sink),
     }
+}
+
+/// A sphere as the frame sees it: its per-frame constants and its silhouette.
+struct FrameSphere {
+    consts: SphereConsts,
+    silhouette: Silhouette,
 }
 
 /// Per-frame state: the visible part of the image and each sphere's constants.
 struct Frame<'a, const N: usize> {
     camera: &'a Camera,
-    spheres: Vec<SphereConsts, N>,
+    spheres: Vec<FrameSphere, N>,
     background: Rgb888,
     /// Visible columns `i0..i1` and rows `j0..j1` of the image.
     i0: u32,
@@ -369,7 +451,16 @@ struct Frame<'a, const N: usize> {
 
 impl<'a, const N: usize> Frame<'a, N> {
     /// Clips the image (placed at `offset`) to `clip`; `None` if nothing is visible.
-    fn new(scene: &Scene<N>, camera: &'a Camera, clip: Rectangle, offset: Point) -> Option<Self> {
+    /// `step_err` bounds how far the stepping's directions are from the ideal ones.
+    fn new(
+        scene: &Scene<N>,
+        camera: &'a Camera,
+        method: Method,
+        options: Options,
+        step_err: f32,
+        clip: Rectangle,
+        offset: Point,
+    ) -> Option<Self> {
         let size = camera.size();
         // Clip in i64: no overflow for any offset or target size.
         let span = |origin: i32, len: u32, clip_origin: i32, clip_len: u32| {
@@ -379,13 +470,29 @@ impl<'a, const N: usize> Frame<'a, N> {
         };
         let (i0, i1) = span(offset.x, size.width, clip.top_left.x, clip.size.width)?;
         let (j0, j1) = span(offset.y, size.height, clip.top_left.y, clip.size.height)?;
-        // Per-sphere constants, once per frame.
+        // Per-sphere constants and silhouettes, once per frame.
         let eye = camera.eye();
         let w = camera.w();
+        let margin = match method.sphere_test {
+            SphereTest::Algebraic | SphereTest::Geometric => Margin::Quadratic,
+            SphereTest::Robust | SphereTest::ForwardDiff | SphereTest::Auto => Margin::Linear,
+        };
         let spheres = scene
             .spheres()
             .iter()
-            .map(|s| SphereConsts::new(s, eye, w))
+            .map(|s| {
+                let consts = SphereConsts::new(s, eye, w).with_row_step(
+                    camera.pixel_step(),
+                    options.anchor,
+                    camera.pixel_width(),
+                );
+                let silhouette = if options.culling {
+                    Silhouette::new(consts.l, s.radius, camera, margin, step_err)
+                } else {
+                    Silhouette::All
+                };
+                FrameSphere { consts, silhouette }
+            })
             .collect();
         Some(Self {
             camera,
@@ -399,13 +506,32 @@ impl<'a, const N: usize> Frame<'a, N> {
         })
     }
 
-    /// The frame loop for one method: per row, set up the stepper and hand the row's
-    /// pixel iterator to the sink.
-    fn run<K: RowSink, S: Stepper, T: HitTest, Q: SqrtFn>(&self, sink: &mut K) -> Result<(), K::Error> {
+    /// The frame loop for one method: per row, set up the stepper, cut every sphere's
+    /// silhouette with the scanline (the row's active spheres, in scene order), and hand
+    /// the row's pixel iterator to the sink.
+    fn run<K: RowSink, S: Stepper, T: RowTest, Q: SqrtFn>(&mut self, sink: &mut K) -> Result<(), K::Error> {
         let mut stepper = S::new(self.camera);
         let width = self.i1 - self.i0;
+        let mut active: Vec<Active<'_, T::State>, N> = Vec::new();
         for j in self.j0..self.j1 {
             stepper.start_row(j, self.i0);
+            // Per row: the spheres whose span meets this row, and the union of the spans.
+            active.clear();
+            let (mut lo_all, mut hi_all) = (self.i1, self.i0);
+            for (index, fs) in self.spheres.iter().enumerate() {
+                if let Some((lo, hi)) = fs.silhouette.row_span(j, self.i0, self.i1) {
+                    lo_all = lo_all.min(lo);
+                    hi_all = hi_all.max(hi);
+                    // Cannot fail: at most N spheres.
+                    let _ = active.push(Active {
+                        index,
+                        lo,
+                        hi,
+                        consts: &fs.consts,
+                        state: T::row_start(lo),
+                    });
+                }
+            }
             // Visible rows and columns fit in the target's i32 coordinates.
             let area = Rectangle::new(
                 Point::new(
@@ -416,7 +542,9 @@ impl<'a, const N: usize> Frame<'a, N> {
             );
             let row = RowPixels::<S, T, Q> {
                 stepper: &mut stepper,
-                spheres: &self.spheres,
+                active: &mut active,
+                lo_all,
+                hi_all,
                 w: self.camera.w(),
                 background: self.background,
                 i: self.i0,
@@ -430,10 +558,25 @@ impl<'a, const N: usize> Frame<'a, N> {
     }
 }
 
+/// A sphere whose span meets the current row.
+struct Active<'s, St> {
+    /// Index in the scene.
+    index: usize,
+    /// Columns `[lo, hi)` whose rays can hit it.
+    lo: u32,
+    hi: u32,
+    consts: &'s SphereConsts,
+    /// The test's per-row state (forward differences).
+    state: St,
+}
+
 /// The pixels of one scanline, traced as the sink pulls them.
-struct RowPixels<'r, S, T, Q> {
+struct RowPixels<'r, 's, S, T: RowTest, Q> {
     stepper: &'r mut S,
-    spheres: &'r [SphereConsts],
+    active: &'r mut [Active<'s, T::State>],
+    /// Union of the active spans: outside it a pixel is background without a test.
+    lo_all: u32,
+    hi_all: u32,
     w: Vec3,
     background: Rgb888,
     i: u32,
@@ -442,22 +585,37 @@ struct RowPixels<'r, S, T, Q> {
     strategy: PhantomData<(T, Q)>,
 }
 
-impl<S: Stepper, T: HitTest, Q: SqrtFn> Iterator for RowPixels<'_, S, T, Q> {
+impl<S: Stepper, T: RowTest, Q: SqrtFn> Iterator for RowPixels<'_, '_, S, T, Q> {
     type Item = Sample;
 
     #[inline(always)]
     fn next(&mut self) -> Option<Sample> {
-        if self.i >= self.end {
+        let i = self.i;
+        if i >= self.end {
             return None;
         }
-        let pixel = Point::new(self.i as i32, self.j as i32);
+        let pixel = Point::new(i as i32, self.j as i32);
         self.i += 1;
         // Form the ray from the eye through the pixel centre.
         let d = self.stepper.next_direction();
-        let a = d.dot(d);
-        // Closest hit over all spheres, then Lab #1 shading with the view-space normal:
+        let mut best: Option<(usize, f32, &SphereConsts)> = None;
+        if i >= self.lo_all && i < self.hi_all {
+            let a = d.dot(d);
+            // Closest hit over the spheres whose span holds this column, in scene order;
+            // each test gets the nearest t so far as its t_max.
+            let mut t_max = f32::INFINITY;
+            for act in self.active.iter_mut() {
+                if i >= act.lo && i < act.hi {
+                    if let Some(t) = T::hit::<Q>(&mut act.state, act.consts, d, a, i, t_max) {
+                        t_max = t;
+                        best = Some((act.index, t, act.consts));
+                    }
+                }
+            }
+        }
+        // Lab #1 shading with the view-space normal:
         // n·(−w) = ((L − t·d)·w)/r, camera-relative so |eye| does not cost precision.
-        let (hit, color) = match closest::<T, Q>(self.spheres, d, a) {
+        let (hit, color) = match best {
             Some((index, t, s)) => {
                 let n_z = (s.lw - t * d.dot(self.w)) * s.inv_r;
                 (Some(Hit { index, t }), shade::lab1(s.color, n_z))
@@ -481,6 +639,10 @@ impl<S: Stepper, T: HitTest, Q: SqrtFn> Iterator for RowPixels<'_, S, T, Q> {
 /// How the ray direction advances: a strategy type per [`Stepping`].
 trait Stepper {
     fn new(camera: &Camera) -> Self;
+    /// A bound `E` on `|d − (F + i·du + j·dv)|` (exact arithmetic on the camera's f32
+    /// `F`, `du`, `dv`) over the whole image, for span culling's margin. Each f32
+    /// addition or product rounds by at most 2⁻²⁴ of its result's norm.
+    fn error_bound(camera: &Camera) -> f32;
     /// Prepare row `j`, starting at column `i0`. Rows come in increasing order.
     fn start_row(&mut self, j: u32, i0: u32);
     /// The current pixel's direction `p − eye`; advances one pixel.
@@ -498,7 +660,27 @@ struct WorldSpaceStep {
     pixel_center: Vec3,
 }
 
+/// `(|F| + H·|dv| + W·|du|, W, H)`: the largest ideal direction and the image size.
+fn extent(camera: &Camera) -> (f32, f32, f32) {
+    let size = camera.size();
+    let (w, h) = (size.width as f32, size.height as f32);
+    let s = camera.first_direction().length()
+        + h * camera.scanline_step().length()
+        + w * camera.pixel_step().length();
+    (s, w, h)
+}
+
+/// 2⁻²³: twice the unit roundoff, a safety factor of 2 on every count below.
+const ROUNDING: f32 = 1.0 / 8_388_608.0;
+
 impl Stepper for WorldSpaceStep {
+    fn error_bound(camera: &Camera) -> f32 {
+        // `upper_left_world` (≤ 6 roundings of size |eye| + S), j additions of dv and
+        // i additions of du (each ≤ 2⁻²⁴·|p|, |p| ≤ |eye| + S), and `p − eye`.
+        let (s, w, h) = extent(camera);
+        ROUNDING * (w + h + 8.0) * (camera.eye().length() + s)
+    }
+
     fn new(camera: &Camera) -> Self {
         Self {
             eye: camera.eye(),
@@ -540,6 +722,12 @@ struct IncrementalStep {
 }
 
 impl Stepper for IncrementalStep {
+    fn error_bound(camera: &Camera) -> f32 {
+        // The row anchor `F + dv·j` (2 roundings) and i additions of du (≤ 2⁻²⁴·S each).
+        let (s, w, _) = extent(camera);
+        ROUNDING * (w + 4.0) * s
+    }
+
     fn new(camera: &Camera) -> Self {
         Self {
             first: camera.first_direction(),
@@ -576,6 +764,12 @@ struct DirectStep {
 }
 
 impl Stepper for DirectStep {
+    fn error_bound(camera: &Camera) -> f32 {
+        // `F + dv·j` and `+ du·i`: four roundings of size ≤ S.
+        let (s, _, _) = extent(camera);
+        ROUNDING * 8.0 * s
+    }
+
     fn new(camera: &Camera) -> Self {
         Self {
             first: camera.first_direction(),

@@ -352,8 +352,20 @@ impl<D: DrawTarget<Color = C>, C: PixelColor + From<Rgb888>> RowSink for DrawSin
     type Error = D::Error;
     #[inline(always)]
     fn row<I: Iterator<Item = Sample>>(&mut self, area: Rectangle, pixels: I) -> Result<(), D::Error> {
-        self.target
-            .fill_contiguous(&area, pixels.map(|s| C::from(s.color)))
+        // Convert colours through a one-entry cache: runs of background (and of a flat
+        // shade) cost a 3-byte compare instead of a conversion per pixel.
+        let mut last: Option<(Rgb888, C)> = None;
+        self.target.fill_contiguous(
+            &area,
+            pixels.map(move |s| match last {
+                Some((rgb, c)) if rgb == s.color => c,
+                _ => {
+                    let c = C::from(s.color);
+                    last = Some((s.color, c));
+                    c
+                }
+            }),
+        )
     }
 }
 
@@ -514,7 +526,7 @@ impl<'a, const N: usize> Frame<'a, N> {
         let width = self.i1 - self.i0;
         let mut active: Vec<Active<'_, T::State>, N> = Vec::new();
         for j in self.j0..self.j1 {
-            stepper.start_row(j, self.i0);
+            let row_step = stepper.start_row(j, self.i0);
             // Per row: the spheres whose span meets this row, and the union of the spans.
             active.clear();
             let (mut lo_all, mut hi_all) = (self.i1, self.i0);
@@ -541,7 +553,7 @@ impl<'a, const N: usize> Frame<'a, N> {
                 Size::new(width, 1),
             );
             let row = RowPixels::<S, T, Q> {
-                stepper: &mut stepper,
+                stepper: row_step,
                 active: &mut active,
                 lo_all,
                 hi_all,
@@ -571,8 +583,8 @@ struct Active<'s, St> {
 }
 
 /// The pixels of one scanline, traced as the sink pulls them.
-struct RowPixels<'r, 's, S, T: RowTest, Q> {
-    stepper: &'r mut S,
+struct RowPixels<'r, 's, S: Stepper, T: RowTest, Q> {
+    stepper: S::Row,
     active: &'r mut [Active<'s, T::State>],
     /// Union of the active spans: outside it a pixel is background without a test.
     lo_all: u32,
@@ -636,28 +648,25 @@ impl<S: Stepper, T: RowTest, Q: SqrtFn> Iterator for RowPixels<'_, '_, S, T, Q> 
     }
 }
 
-/// How the ray direction advances: a strategy type per [`Stepping`].
+/// How the ray direction advances: a strategy type per [`Stepping`]. The frame-level
+/// stepper hands out a small per-row stepper by value, so the pixel loop keeps it in
+/// registers.
 trait Stepper {
+    /// The per-row stepper.
+    type Row: RowStep;
     fn new(camera: &Camera) -> Self;
     /// A bound `E` on `|d − (F + i·du + j·dv)|` (exact arithmetic on the camera's f32
     /// `F`, `du`, `dv`) over the whole image, for span culling's margin. Each f32
     /// addition or product rounds by at most 2⁻²⁴ of its result's norm.
     fn error_bound(camera: &Camera) -> f32;
     /// Prepare row `j`, starting at column `i0`. Rows come in increasing order.
-    fn start_row(&mut self, j: u32, i0: u32);
-    /// The current pixel's direction `p − eye`; advances one pixel.
-    fn next_direction(&mut self) -> Vec3;
+    fn start_row(&mut self, j: u32, i0: u32) -> Self::Row;
 }
 
-/// The slides verbatim: world-space pixel centres.
-struct WorldSpaceStep {
-    eye: Vec3,
-    du: Vec3,
-    dv: Vec3,
-    scanline_start: Vec3,
-    /// The row `scanline_start` belongs to.
-    row: u32,
-    pixel_center: Vec3,
+/// A row's direction stepper.
+trait RowStep {
+    /// The current pixel's direction `p − eye`; advances one pixel.
+    fn next_direction(&mut self) -> Vec3;
 }
 
 /// `(|F| + H·|dv| + W·|du|, W, H)`: the largest ideal direction and the image size.
@@ -673,7 +682,26 @@ fn extent(camera: &Camera) -> (f32, f32, f32) {
 /// 2⁻²³: twice the unit roundoff, a safety factor of 2 on every count below.
 const ROUNDING: f32 = 1.0 / 8_388_608.0;
 
+/// The slides verbatim: world-space pixel centres.
+struct WorldSpaceStep {
+    eye: Vec3,
+    du: Vec3,
+    dv: Vec3,
+    scanline_start: Vec3,
+    /// The row `scanline_start` belongs to.
+    row: u32,
+}
+
+/// A world-space row: the pixel centre, stepped by `du`.
+struct WorldSpaceRow {
+    eye: Vec3,
+    du: Vec3,
+    pixel_center: Vec3,
+}
+
 impl Stepper for WorldSpaceStep {
+    type Row = WorldSpaceRow;
+
     fn error_bound(camera: &Camera) -> f32 {
         // `upper_left_world` (≤ 6 roundings of size |eye| + S), j additions of dv and
         // i additions of du (each ≤ 2⁻²⁴·|p|, |p| ≤ |eye| + S), and `p − eye`.
@@ -688,23 +716,29 @@ impl Stepper for WorldSpaceStep {
             dv: camera.scanline_step(),
             scanline_start: camera.upper_left_world(),
             row: 0,
-            pixel_center: camera.upper_left_world(),
         }
     }
 
-    fn start_row(&mut self, j: u32, i0: u32) {
+    fn start_row(&mut self, j: u32, i0: u32) -> WorldSpaceRow {
         // scanlineStart −= ph·v, once per scanline (also for clipped rows, so a clipped
         // render sees exactly the rounding of a full one).
         while self.row < j {
             self.scanline_start += self.dv;
             self.row += 1;
         }
-        self.pixel_center = self.scanline_start;
+        let mut pixel_center = self.scanline_start;
         for _ in 0..i0 {
-            self.pixel_center += self.du;
+            pixel_center += self.du;
+        }
+        WorldSpaceRow {
+            eye: self.eye,
+            du: self.du,
+            pixel_center,
         }
     }
+}
 
+impl RowStep for WorldSpaceRow {
     #[inline(always)]
     fn next_direction(&mut self) -> Vec3 {
         let d = self.pixel_center - self.eye;
@@ -718,10 +752,17 @@ struct IncrementalStep {
     first: Vec3,
     du: Vec3,
     dv: Vec3,
+}
+
+/// An incremental row: the direction, stepped by `du`.
+struct IncrementalRow {
+    du: Vec3,
     d: Vec3,
 }
 
 impl Stepper for IncrementalStep {
+    type Row = IncrementalRow;
+
     fn error_bound(camera: &Camera) -> f32 {
         // The row anchor `F + dv·j` (2 roundings) and i additions of du (≤ 2⁻²⁴·S each).
         let (s, w, _) = extent(camera);
@@ -733,19 +774,21 @@ impl Stepper for IncrementalStep {
             first: camera.first_direction(),
             du: camera.pixel_step(),
             dv: camera.scanline_step(),
-            d: camera.first_direction(),
         }
     }
 
-    fn start_row(&mut self, j: u32, i0: u32) {
+    fn start_row(&mut self, j: u32, i0: u32) -> IncrementalRow {
         // Anchor the scanline exactly (per-row work), then step to the first visible
         // column the same way the pixel loop does.
-        self.d = self.first + self.dv * j as f32;
+        let mut d = self.first + self.dv * j as f32;
         for _ in 0..i0 {
-            self.d += self.du;
+            d += self.du;
         }
+        IncrementalRow { du: self.du, d }
     }
+}
 
+impl RowStep for IncrementalRow {
     #[inline(always)]
     fn next_direction(&mut self) -> Vec3 {
         let d = self.d;
@@ -759,11 +802,18 @@ struct DirectStep {
     first: Vec3,
     du: Vec3,
     dv: Vec3,
+}
+
+/// A direct row: the row's first direction and the column.
+struct DirectRow {
     row: Vec3,
+    du: Vec3,
     i: u32,
 }
 
 impl Stepper for DirectStep {
+    type Row = DirectRow;
+
     fn error_bound(camera: &Camera) -> f32 {
         // `F + dv·j` and `+ du·i`: four roundings of size ≤ S.
         let (s, _, _) = extent(camera);
@@ -775,16 +825,19 @@ impl Stepper for DirectStep {
             first: camera.first_direction(),
             du: camera.pixel_step(),
             dv: camera.scanline_step(),
-            row: camera.first_direction(),
-            i: 0,
         }
     }
 
-    fn start_row(&mut self, j: u32, i0: u32) {
-        self.row = self.first + self.dv * j as f32;
-        self.i = i0;
+    fn start_row(&mut self, j: u32, i0: u32) -> DirectRow {
+        DirectRow {
+            row: self.first + self.dv * j as f32,
+            du: self.du,
+            i: i0,
+        }
     }
+}
 
+impl RowStep for DirectRow {
     #[inline(always)]
     fn next_direction(&mut self) -> Vec3 {
         let d = self.row + self.du * self.i as f32;

@@ -94,7 +94,7 @@ impl Silhouette {
                 if hw2 < 0.0 {
                     return None;
                 }
-                let hw = libm::sqrtf(hw2);
+                let hw = crate::math::sqrt_exact(hw2);
                 let shift = kx * dy;
                 let xc = xc0 + shift;
                 // One column (covers the f32 rounding of xc0, ≤ 2⁻⁴ for |xc0| ≤ 2²⁰)

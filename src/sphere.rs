@@ -236,7 +236,7 @@ pub(crate) fn auto_uses_forward_diff(c: f32, r2: f32, pw: f32, k: u32) -> bool {
         return false;
     }
     // Radius on screen in pixels (tangent-cone half-angle over the pixel angle).
-    let r_px = libm::sqrtf(r2 / c) / pw;
+    let r_px = crate::math::sqrt_exact(r2 / c) / pw;
     let k = k as f32;
     FD_EDGE_SCALE * k * (r_px + 2.0 * k) <= 1.0 / 16.0
 }

@@ -70,7 +70,7 @@ impl DrawTarget for SliceTarget<'_> {
 
 thread_local! {
     /// Per benchmark id: total time and pixels over every timed iteration.
-    static TOTALS: RefCell<BTreeMap<(String, String), (Duration, u64)>> = RefCell::new(BTreeMap::new());
+    static TOTALS: RefCell<BTreeMap<(String, String), (Duration, u64)>> = const { RefCell::new(BTreeMap::new()) };
 }
 
 fn main() {

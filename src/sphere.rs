@@ -387,7 +387,7 @@ pub(crate) struct ForwardDiff;
 /// [`auto_uses_forward_diff`].
 pub(crate) struct Auto;
 
-/// The anchor interval K of [`ForwardDiff`]: direct re-evaluation every K columns.
+/// The anchor interval K of the forward-differenced test ([`SphereTest::ForwardDiff`]): direct re-evaluation every K columns.
 ///
 /// Chosen from the measurement `cargo test --test speed forward_diff_error_against_k
 /// -- --nocapture` (forward differences against the robust test, incremental stepping,

@@ -516,3 +516,38 @@ impl RowTest for Auto {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Auto's rule at its edges: the eye inside or on the sphere, and the on-screen
+    /// radius where `2⁻²⁴·K·(R + 2K)` crosses 1/16 px (K = 16: R = 65 504 px).
+    #[test]
+    fn auto_rule_boundaries() {
+        let pw = 1e-3;
+        // R = √(r²/c)/pw: choose c for a given R with r = 1.
+        let c_for = |r_px: f32| 1.0 / (r_px * pw) / (r_px * pw);
+        assert!(auto_uses_forward_diff(c_for(100.0), 1.0, pw, 16));
+        assert!(auto_uses_forward_diff(c_for(65_000.0), 1.0, pw, 16));
+        assert!(!auto_uses_forward_diff(c_for(66_000.0), 1.0, pw, 16));
+        // A longer anchor interval shrinks the range: K = 4096 allows R ≤ 2⁸ − 2K < 0.
+        assert!(!auto_uses_forward_diff(c_for(10.0), 1.0, pw, 4096));
+        // Eye inside (c < 0), on the surface (c = 0), NaN: robust.
+        assert!(!auto_uses_forward_diff(-1.0, 1.0, pw, 16));
+        assert!(!auto_uses_forward_diff(0.0, 1.0, pw, 16));
+        assert!(!auto_uses_forward_diff(f32::NAN, 1.0, pw, 16));
+    }
+
+    /// A single-ray query with the forward-differenced test is its direct evaluation,
+    /// which agrees with the robust test on an easy ray.
+    #[test]
+    fn forward_diff_single_ray_is_direct() {
+        let s = Sphere::new(Vec3::new(0.0, 0.0, -5.0), 1.0, Rgb888::new(1, 2, 3));
+        let d = Vec3::new(0.05, -0.02, -1.0);
+        let fd = s.intersect(Vec3::ZERO, d, SphereTest::ForwardDiff, Sqrt::Exact).unwrap();
+        let robust = s.intersect_robust(Vec3::ZERO, d).unwrap();
+        assert!((fd - robust).abs() <= 2.0 * f32::EPSILON * robust, "{fd} vs {robust}");
+        assert_eq!(s.intersect(Vec3::ZERO, Vec3::new(0.5, 0.0, -1.0), SphereTest::Auto, Sqrt::Exact), None);
+    }
+}

@@ -151,9 +151,12 @@ fn random_case(rng: &mut Rng) -> (Scene<12>, Camera) {
 
 #[test]
 fn culling_changes_no_pixel_on_random_scenes() {
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    // More cases and another seed from the environment for a longer soak, e.g.
+    // `SPEED_CASES=5000 SPEED_SEED=7 cargo test --release --test speed random`.
+    let env = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<u64>().ok());
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ env("SPEED_SEED").unwrap_or(0));
     let mut hits = 0usize;
-    for case in 0..60 {
+    for case in 0..env("SPEED_CASES").unwrap_or(60) {
         let (scene, camera) = random_case(&mut rng);
         for method in Method::ALL.iter().filter(|m| span_invariant(m)) {
             let culled = trace(&scene, &camera, *method, true);
@@ -265,4 +268,47 @@ fn forward_diff_breaks_without_anchors_on_a_huge_row() {
     println!("8192-wide row: K={k} {good} flips, K=8192 {bad} flips");
     assert!(good <= 2, "K = {k}: {good}");
     assert!(bad > good, "K = 8192 should break: {bad}");
+}
+
+fn trace_method<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method) -> Vec<Pixel> {
+    trace(scene, camera, method, true)
+}
+
+/// `Auto` is forward differences for every sphere whose bound allows it (all of the
+/// lab scene's), and the robust test for a sphere containing the eye: bit for bit.
+#[test]
+fn auto_picks_forward_diff_or_robust_per_sphere() {
+    let lab = load("lab");
+    for stepping in [Stepping::Direct, Stepping::Incremental] {
+        for sqrt in [Sqrt::Exact, Sqrt::Fast] {
+            let auto = trace_method(&lab.scene, &lab.camera, Method::new(stepping, SphereTest::Auto, sqrt));
+            let fd = trace_method(&lab.scene, &lab.camera, Method::new(stepping, SphereTest::ForwardDiff, sqrt));
+            assert!(auto == fd, "lab {stepping}/{sqrt}: auto differs from forward-diff");
+        }
+    }
+    // The eye inside the only sphere: Auto must fall back to the robust test.
+    let inside: Scene<1> = Scene::from_array([Sphere::new(Vec3::new(0.1, 0.2, 0.3), 2.0, Rgb888::WHITE)], Rgb888::BLACK);
+    let camera = Camera::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::new(0.0, 1.0, 0.0), 1.2, Size::new(64, 48)).unwrap();
+    let auto = trace_method(&inside, &camera, Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact));
+    let robust = trace_method(&inside, &camera, Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact));
+    let fd = trace_method(&inside, &camera, Method::new(Stepping::Direct, SphereTest::ForwardDiff, Sqrt::Exact));
+    assert!(auto.iter().all(|p| p.0.is_some()), "inside a sphere every ray hits it");
+    assert!(auto == robust, "eye inside: auto differs from robust");
+    // (and the fallback is observable: forward differences round differently here)
+    assert!(fd != robust, "forward-diff happens to equal robust: the test above proves nothing");
+}
+
+/// The default method meets the accuracy target against the robust test on every
+/// standard scene: no coverage flip, colours within one level.
+#[test]
+fn default_method_matches_robust_within_one_level() {
+    for name in SCENES {
+        let file = load(name);
+        let camera = if name == "drift" { shrink(&file.camera, 480, 270) } else { file.camera };
+        let default = trace_method(&file.scene, &camera, Method::DEFAULT);
+        let robust = trace_method(&file.scene, &camera, Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact));
+        let (coverage, _, level) = compare(&default, &robust);
+        assert_eq!(coverage, 0, "{name}: coverage");
+        assert!(level <= 1, "{name}: {level} levels");
+    }
 }

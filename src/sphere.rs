@@ -545,9 +545,22 @@ mod tests {
     fn forward_diff_single_ray_is_direct() {
         let s = Sphere::new(Vec3::new(0.0, 0.0, -5.0), 1.0, Rgb888::new(1, 2, 3));
         let d = Vec3::new(0.05, -0.02, -1.0);
-        let fd = s.intersect(Vec3::ZERO, d, SphereTest::ForwardDiff, Sqrt::Exact).unwrap();
+        let fd = s
+            .intersect(Vec3::ZERO, d, SphereTest::ForwardDiff, Sqrt::Exact)
+            .unwrap();
         let robust = s.intersect_robust(Vec3::ZERO, d).unwrap();
-        assert!((fd - robust).abs() <= 2.0 * f32::EPSILON * robust, "{fd} vs {robust}");
-        assert_eq!(s.intersect(Vec3::ZERO, Vec3::new(0.5, 0.0, -1.0), SphereTest::Auto, Sqrt::Exact), None);
+        assert!(
+            (fd - robust).abs() <= 2.0 * f32::EPSILON * robust,
+            "{fd} vs {robust}"
+        );
+        assert_eq!(
+            s.intersect(
+                Vec3::ZERO,
+                Vec3::new(0.5, 0.0, -1.0),
+                SphereTest::Auto,
+                Sqrt::Exact
+            ),
+            None
+        );
     }
 }

@@ -281,21 +281,60 @@ fn auto_picks_forward_diff_or_robust_per_sphere() {
     let lab = load("lab");
     for stepping in [Stepping::Direct, Stepping::Incremental] {
         for sqrt in [Sqrt::Exact, Sqrt::Fast] {
-            let auto = trace_method(&lab.scene, &lab.camera, Method::new(stepping, SphereTest::Auto, sqrt));
-            let fd = trace_method(&lab.scene, &lab.camera, Method::new(stepping, SphereTest::ForwardDiff, sqrt));
-            assert!(auto == fd, "lab {stepping}/{sqrt}: auto differs from forward-diff");
+            let auto = trace_method(
+                &lab.scene,
+                &lab.camera,
+                Method::new(stepping, SphereTest::Auto, sqrt),
+            );
+            let fd = trace_method(
+                &lab.scene,
+                &lab.camera,
+                Method::new(stepping, SphereTest::ForwardDiff, sqrt),
+            );
+            assert!(
+                auto == fd,
+                "lab {stepping}/{sqrt}: auto differs from forward-diff"
+            );
         }
     }
     // The eye inside the only sphere: Auto must fall back to the robust test.
-    let inside: Scene<1> = Scene::from_array([Sphere::new(Vec3::new(0.1, 0.2, 0.3), 2.0, Rgb888::WHITE)], Rgb888::BLACK);
-    let camera = Camera::new(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), Vec3::new(0.0, 1.0, 0.0), 1.2, Size::new(64, 48)).unwrap();
-    let auto = trace_method(&inside, &camera, Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact));
-    let robust = trace_method(&inside, &camera, Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact));
-    let fd = trace_method(&inside, &camera, Method::new(Stepping::Direct, SphereTest::ForwardDiff, Sqrt::Exact));
-    assert!(auto.iter().all(|p| p.0.is_some()), "inside a sphere every ray hits it");
+    let inside: Scene<1> = Scene::from_array(
+        [Sphere::new(Vec3::new(0.1, 0.2, 0.3), 2.0, Rgb888::WHITE)],
+        Rgb888::BLACK,
+    );
+    let camera = Camera::new(
+        Vec3::ZERO,
+        Vec3::new(0.0, 0.0, -1.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        1.2,
+        Size::new(64, 48),
+    )
+    .unwrap();
+    let auto = trace_method(
+        &inside,
+        &camera,
+        Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact),
+    );
+    let robust = trace_method(
+        &inside,
+        &camera,
+        Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact),
+    );
+    let fd = trace_method(
+        &inside,
+        &camera,
+        Method::new(Stepping::Direct, SphereTest::ForwardDiff, Sqrt::Exact),
+    );
+    assert!(
+        auto.iter().all(|p| p.0.is_some()),
+        "inside a sphere every ray hits it"
+    );
     assert!(auto == robust, "eye inside: auto differs from robust");
     // (and the fallback is observable: forward differences round differently here)
-    assert!(fd != robust, "forward-diff happens to equal robust: the test above proves nothing");
+    assert!(
+        fd != robust,
+        "forward-diff happens to equal robust: the test above proves nothing"
+    );
 }
 
 /// The default method meets the accuracy target against the robust test on every
@@ -304,11 +343,65 @@ fn auto_picks_forward_diff_or_robust_per_sphere() {
 fn default_method_matches_robust_within_one_level() {
     for name in SCENES {
         let file = load(name);
-        let camera = if name == "drift" { shrink(&file.camera, 480, 270) } else { file.camera };
+        let camera = if name == "drift" {
+            shrink(&file.camera, 480, 270)
+        } else {
+            file.camera
+        };
         let default = trace_method(&file.scene, &camera, Method::DEFAULT);
-        let robust = trace_method(&file.scene, &camera, Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact));
+        let robust = trace_method(
+            &file.scene,
+            &camera,
+            Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact),
+        );
         let (coverage, _, level) = compare(&default, &robust);
         assert_eq!(coverage, 0, "{name}: coverage");
         assert!(level <= 1, "{name}: {level} levels");
+    }
+}
+
+/// A clipped draw (the image placed partly off the target) gives exactly the pixels of
+/// the full render where they are visible, with culling and forward differences.
+#[test]
+fn clipped_draw_matches_the_full_render() {
+    use embedded_graphics::mock_display::MockDisplay;
+    let lab = load("lab");
+    let camera = shrink(&lab.camera, 60, 40);
+    for method in [
+        Method::DEFAULT,
+        Method::LITERAL,
+        Method::new(Stepping::Incremental, SphereTest::ForwardDiff, Sqrt::Fast),
+    ] {
+        let full = trace_method(&lab.scene, &camera, method);
+        let mut display = MockDisplay::<Rgb888>::new();
+        let offset = Point::new(-13, -7);
+        Render::new(&lab.scene, &camera)
+            .with_method(method)
+            .with_offset(offset)
+            .draw(&mut display)
+            .unwrap();
+        let mut checked = 0;
+        for (k, p) in full.iter().enumerate() {
+            let at = Point::new((k % 60) as i32, (k / 60) as i32) + offset;
+            if at.x >= 0 && at.y >= 0 && at.x < 64 && at.y < 64 {
+                // Forward differences anchor at the first visible column, so they may
+                // differ by rounding; the others must match exactly.
+                let got = display.get_pixel(at).unwrap();
+                if matches!(method.sphere_test, SphereTest::ForwardDiff | SphereTest::Auto) {
+                    let d = |a: u8, b: u8| a.abs_diff(b);
+                    assert!(
+                        d(got.r(), p.1.r())
+                            .max(d(got.g(), p.1.g()))
+                            .max(d(got.b(), p.1.b()))
+                            <= 1,
+                        "{method} at {at:?}"
+                    );
+                } else {
+                    assert_eq!(got, p.1, "{method} at {at:?}");
+                }
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 47 * 33);
     }
 }

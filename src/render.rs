@@ -636,7 +636,7 @@ impl<S: Stepper, T: RowTest, Q: SqrtFn> Iterator for RowPixels<'_, '_, S, T, Q> 
         let (hit, color) = match best {
             Some((index, t, s)) => {
                 let n_z = (s.lw - t * d.dot(self.w)) * s.inv_r;
-                (Some(Hit { index, t }), shade::lab1(s.color, n_z))
+                (Some(Hit { index, t }), shade::lab1_channels(s.rgb, n_z))
             }
             None => (None, self.background),
         };

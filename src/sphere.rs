@@ -155,8 +155,8 @@ pub(crate) struct SphereConsts {
     pub lw: f32,
     /// `1/r`.
     pub inv_r: f32,
-    /// Object colour.
-    pub color: Rgb888,
+    /// The object colour's channels as `f32`, for the shading.
+    pub rgb: [f32; 3],
     /// Forward differencing along a scanline (per frame, see [`ForwardDiff`]): the
     /// pixel step `du`,
     pub du: Vec3,
@@ -188,7 +188,7 @@ impl SphereConsts {
             c: l2 - r2,
             lw: l.dot(w),
             inv_r: 1.0 / sphere.radius,
-            color: sphere.color,
+            rgb: crate::shade::channels(sphere.color),
             du: Vec3::ZERO,
             x1: Vec3::ZERO,
             ldu: 0.0,

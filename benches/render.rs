@@ -8,7 +8,8 @@
 //! cargo bench -- lab/              # one scene (criterion's filter)
 //! ```
 //!
-//! The table at the end uses each benchmark's mean over all its timed iterations.
+//! The table at the end uses, per benchmark, the median over criterion's samples (and
+//! warm-up calls) of the time per iteration: robust to bursts of load on a shared machine.
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;
@@ -69,8 +70,8 @@ impl DrawTarget for SliceTarget<'_> {
 }
 
 thread_local! {
-    /// Per benchmark id: total time and pixels over every timed iteration.
-    static TOTALS: RefCell<BTreeMap<(String, String), (Duration, u64)>> = const { RefCell::new(BTreeMap::new()) };
+    /// Per benchmark id: ns/pixel of every timed call (one criterion sample or warm-up).
+    static SAMPLES: RefCell<BTreeMap<(String, String), Vec<f64>>> = const { RefCell::new(BTreeMap::new()) };
 }
 
 fn main() {
@@ -104,11 +105,11 @@ fn main() {
                         std::hint::black_box(&target.buf);
                     }
                     let elapsed = start.elapsed();
-                    TOTALS.with(|t| {
-                        let mut t = t.borrow_mut();
-                        let e = t.entry((name.to_string(), label.clone())).or_default();
-                        e.0 += elapsed;
-                        e.1 += iters * pixels;
+                    SAMPLES.with(|t| {
+                        t.borrow_mut()
+                            .entry((name.to_string(), label.clone()))
+                            .or_default()
+                            .push(elapsed.as_nanos() as f64 / (iters * pixels) as f64);
                     });
                     elapsed
                 })
@@ -122,19 +123,20 @@ fn main() {
 
 /// ns/pixel and the ratio baseline/method (how many times faster), per scene.
 fn print_ratios() {
-    TOTALS.with(|t| {
+    SAMPLES.with(|t| {
         let t = t.borrow();
         let ns = |scene: &str, label: &str| {
-            t.get(&(scene.to_string(), label.to_string()))
-                .map(|(d, px)| d.as_nanos() as f64 / *px as f64)
+            t.get(&(scene.to_string(), label.to_string())).map(|v| {
+                let mut v = v.clone();
+                v.sort_by(f64::total_cmp);
+                v[v.len() / 2]
+            })
         };
-        println!(
-            "\nns/pixel and speed-up over the literal baseline (same run; mean of all timed iterations)"
-        );
+        println!("\nns/pixel and speed-up over the literal baseline (same run; median of the timed calls)");
         for scene in SCENES {
             let Some(base) = ns(scene, BASELINE) else { continue };
             println!(
-                "\n{scene}: baseline {BASELINE} = {} (no culling) {base:.2} ns/pixel",
+                "\n{scene}: {BASELINE} = {} (no culling) {base:.2} ns/pixel",
                 Method::LITERAL
             );
             println!("  {:34} {:>10} {:>9}", "method", "ns/pixel", "speed-up");

@@ -3,7 +3,7 @@
 //! ```text
 //! cargo run --release --example render -- scenes/lab.toml --output lab.png \
 //!     [--stepping world-space|incremental|direct] \
-//!     [--sphere-test algebraic|geometric|robust] [--sqrt exact|fast]
+//!     [--sphere-test algebraic|geometric|robust|forward-diff|auto] [--sqrt exact|fast]
 //! ```
 //!
 //! Prints the resolution, the method and the render time. Any bad input (file, field
@@ -24,7 +24,7 @@ const MAX_SPHERES: usize = 256;
 
 const USAGE: &str =
     "usage: render SCENE.toml [--output OUT.png] [--stepping world-space|incremental|direct] \
-[--sphere-test algebraic|geometric|robust] [--sqrt exact|fast]";
+[--sphere-test algebraic|geometric|robust|forward-diff|auto] [--sqrt exact|fast]";
 
 struct Args {
     scene: PathBuf,

@@ -88,6 +88,7 @@ pub mod scene;
 #[cfg(host_std)]
 pub mod scene_file;
 pub mod shade;
+mod span;
 pub mod sphere;
 pub mod vec3;
 

@@ -6,7 +6,14 @@
 //!
 //! | function | source | error bound |
 //! |---|---|---|
-//! | [`sqrt_exact`] | the FPU's `VSQRT.F32` on hard-float ARM (Cortex-M4F/M7), `libm::sqrtf` elsewhere | correctly rounded (≤ 0.5 ulp): both back ends give the same bits |
+//! | [`sqrt_exact`] | the FPU's `VSQRT.F32` on hard-float ARM (`target_abi = "eabihf"`, e.g. `thumbv7em-none-eabihf`), `libm::sqrtf` elsewhere | correctly rounded (≤ 0.5 ulp) |
+//!
+//! Why the instruction: on `thumbv7em-none-eabihf` libm 0.2's `sqrtf` is a software
+//! routine (its `arch` feature only has SSE2, AArch64 and wasm back ends; disassembled,
+//! `libm::sqrtf` there is a loop of integer shifts and compares, no `vsqrt`), while the
+//! Cortex-M4F's FPU computes the same correctly rounded result in 14 cycles. Both are
+//! IEEE-754 `squareRoot` in round-to-nearest, so the results are bit-identical
+//! ([`sqrt_exact_matches_libm`] checks it, on the host and in firmware).
 //! | [`sqrt_fast`] | micromath's bit trick `(bits + 0x3f80_0000) >> 1` | `0 ≤ (fast − exact)/exact ≤ 6.07 %` for finite `x ≥ 0`; exact at powers of 4 |
 
 /// Correctly rounded `f32` square root (IEEE-754 `sqrt`, ≤ 0.5 ulp).
@@ -21,15 +28,41 @@
 /// use embedded_raytracer::math::sqrt_exact;
 /// assert_eq!(sqrt_exact(2.0), core::f32::consts::SQRT_2);
 /// ```
+///
+/// The FPU instruction matches libm bit for bit for every
+/// input as long as the FPU is in its reset configuration: round to nearest, no
+/// flush-to-zero (with `FPSCR.FZ` set, subnormal inputs and results become zero) —
+/// and a NaN result may carry a different payload (both are NaN).
 #[must_use]
 #[inline(always)]
 pub fn sqrt_exact(x: f32) -> f32 {
     #[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
     {
-        // SAFETY: `embedded_raytracer_vsqrtf` (below) follows the AAPCS-VFP calling
-        // convention of `extern "C"` on this target: its argument arrives in s0 and its
-        // result leaves in s0; it touches no other register and no memory.
-        unsafe { embedded_raytracer_vsqrtf(x) }
+        let root: u32;
+        // SAFETY: `vsqrt.f32` computes the root in an FPU register and touches no
+        // memory but the stack slot of the `vpush`/`vpop` pair, which saves and restores
+        // s14 (rustc's `sreg` operand class needs the `vfp2` feature, which the
+        // single-precision `thumbv7em-none-eabihf` FPU (`vfp4d16sp`) does not count as,
+        // so the value travels through core registers and a scratch FPU register the
+        // block restores itself). Every hard-float ARM target (`eabihf`) has a VFP unit
+        // (VFPv2 or later, all of which implement VSQRT.F32) and enables it before
+        // `main` (cortex-m-rt does so for `thumbv7em-none-eabihf`), so the instruction
+        // exists and is enabled. No flags are changed (the FPSCR's cumulative exception
+        // bits are not the condition flags).
+        unsafe {
+            core::arch::asm!(
+                "vpush {{s14}}",
+                "vmov s14, {x}",
+                "vsqrt.f32 s14, s14",
+                "vmov {root}, s14",
+                "vpop {{s14}}",
+                x = in(reg) x.to_bits(),
+                root = lateout(reg) root,
+                options(pure, nomem, preserves_flags)
+            );
+        }
+        let root = f32::from_bits(root);
+        root
     }
     #[cfg(not(all(target_arch = "arm", target_abi = "eabihf")))]
     {
@@ -43,26 +76,54 @@ pub fn sqrt_libm(x: f32) -> f32 {
     libm::sqrtf(x)
 }
 
-// The one `unsafe` asm block of the crate: `VSQRT.F32 s0, s0; BX LR` as a function.
-// Hard-float ARM only. Stable Rust sets no `vfp2` target feature cfg for these
-// targets, so `asm!` cannot name s-registers; a `global_asm!` function with `.fpu`
-// declared is the stable way to reach the instruction.
-#[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
-core::arch::global_asm!(
-    ".fpu fpv4-sp-d16",
-    ".section .text.embedded_raytracer_vsqrtf,\"ax\",%progbits",
-    ".global embedded_raytracer_vsqrtf",
-    ".type embedded_raytracer_vsqrtf,%function",
-    ".thumb_func",
-    "embedded_raytracer_vsqrtf:",
-    "vsqrt.f32 s0, s0",
-    "bx lr",
-    ".size embedded_raytracer_vsqrtf, . - embedded_raytracer_vsqrtf",
-);
-
-#[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
-extern "C" {
-    fn embedded_raytracer_vsqrtf(x: f32) -> f32;
+/// Checks [`sqrt_exact`] against `libm::sqrtf` bit for bit over every `stride`-th f32
+/// bit pattern from `+0` to `+∞` (all of them with `stride = 1`: 2³¹ inputs), plus
+/// `−0`, the smallest and largest subnormals and normals, and a negative input (both
+/// must give NaN). Returns the number of inputs checked, or the first input where the
+/// two disagree.
+///
+/// On the host both sides are libm, so this checks the harness; on a hard-float ARM
+/// target (the firmware example under QEMU, or real hardware) it checks the FPU
+/// instruction.
+///
+/// ```
+/// use embedded_raytracer::math::sqrt_exact_matches_libm;
+/// assert!(matches!(sqrt_exact_matches_libm(65_521), Ok(n) if n > 30_000));
+/// ```
+pub fn sqrt_exact_matches_libm(stride: u32) -> Result<u32, f32> {
+    let same = |x: f32| {
+        let (a, b) = (sqrt_exact(x), libm::sqrtf(x));
+        a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
+    };
+    let stride = stride.max(1);
+    let mut checked = 0u32;
+    let specials = [
+        -0.0,
+        f32::from_bits(1),
+        f32::from_bits(0x007f_ffff),
+        f32::MIN_POSITIVE,
+        f32::MAX,
+        -1.0,
+    ];
+    for x in specials {
+        if !same(x) {
+            return Err(x);
+        }
+        checked += 1;
+    }
+    let mut bits = 0u32;
+    while bits <= 0x7f80_0000 {
+        let x = f32::from_bits(bits);
+        if !same(x) {
+            return Err(x);
+        }
+        checked += 1;
+        bits = match bits.checked_add(stride) {
+            Some(b) => b,
+            None => break,
+        };
+    }
+    Ok(checked)
 }
 
 /// Fast approximate square root (micromath): one integer add and a shift.
@@ -140,6 +201,14 @@ mod tests {
         }
         assert_eq!(sqrt_fast(0.25), 0.5);
         assert!(sqrt_fast(-1.0).is_nan());
+    }
+
+    /// The comparison firmware runs on the FPU, run here over 2²⁴ + inputs (every
+    /// 127th bit pattern): on the host it checks the harness and the libm path.
+    #[test]
+    fn exact_sqrt_is_bit_identical_to_libm() {
+        let checked = sqrt_exact_matches_libm(127).unwrap();
+        assert!(checked > 16_000_000, "{checked}");
     }
 
     #[test]

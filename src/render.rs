@@ -19,9 +19,12 @@ use heapless::Vec;
 use crate::camera::Camera;
 use crate::error::ParseMethodError;
 use crate::math::{ExactSqrt, FastSqrt, SqrtFn};
-use crate::scene::{closest, Hit, Scene};
+use crate::scene::{Hit, Scene};
 use crate::shade;
-use crate::sphere::{Algebraic, Geometric, HitTest, Robust, SphereConsts};
+use crate::span::{Margin, Silhouette};
+use crate::sphere::{
+    Algebraic, Auto, ForwardDiff, Geometric, Robust, RowTest, SphereConsts, FD_ANCHOR_INTERVAL,
+};
 use crate::vec3::Vec3;
 
 /// How the ray direction `p − eye` advances from pixel to pixel.
@@ -50,6 +53,20 @@ pub enum SphereTest {
     Geometric,
     /// Haines et al.'s robust discriminant and stable roots (see [`Sphere::intersect_robust`](crate::Sphere::intersect_robust)).
     Robust,
+    /// The robust test's discriminant `a·r² − |L × d|²` and `b = L·d` forward-differenced
+    /// along each scanline (three additions per sphere and pixel), re-anchored by direct
+    /// evaluation at each span start and every [`FD_ANCHOR_INTERVAL`]
+    /// columns. Error bound: a silhouette edge moves by at most `2⁻²⁴·K·(R + 2K)` pixels
+    /// (`R` the sphere's radius on screen in pixels, `K` the anchor interval), on top of
+    /// the robust test's own error. A single-ray query ([`Sphere::intersect`](crate::Sphere::intersect))
+    /// is an anchor, i.e. evaluated directly.
+    ForwardDiff,
+    /// Adaptive: per sphere and frame, `ForwardDiff` where its error bound moves an edge
+    /// by at most 1/16 pixel (`2⁻²⁴·K·(R + 2K) ≤ 1/16`, the eye outside the sphere),
+    /// `Robust` otherwise. The slides' algebraic and geometric tests are never chosen:
+    /// they are dearer per pixel than forward differences and fail from
+    /// distance/radius ≈ 100. Single-ray queries behave as `ForwardDiff`.
+    Auto,
 }
 
 /// Which square root the pixel loop uses.
@@ -63,19 +80,22 @@ pub enum Sqrt {
 
 /// A point on the speed/accuracy chart: stepping × sphere test × square root.
 ///
-/// The default is `Direct` + `Robust` + `Exact`, the only combination the accuracy lab
-/// (README, "Accuracy") measures with zero coverage errors on every standard scene:
-/// direct evaluation does not accumulate rounding along a row (`Incremental` does,
-/// 0.016 px across 1920 pixels, enough to flip pixels that graze a silhouette), the
-/// robust test has no cancellation, and the exact root keeps shading within one level
-/// of an f64 reference.
+/// The default is `Direct` + `Auto` + `Exact`, chosen from the speed/accuracy chart
+/// (`docs/speed_vs_accuracy.md`): direct evaluation of each direction has no
+/// accumulated rounding (zero coverage errors against the f64 reference on every
+/// standard scene, where incremental stepping loses 14 edge pixels on the 1920-wide
+/// `drift` scene) and, with span culling, costs its three multiplies only where a
+/// sphere can be hit; `Auto` takes the forward-differenced test where its error bound
+/// allows (every sphere of the standard scenes), which is on the Pareto front; the
+/// exact root keeps shading within one level of the reference.
 ///
 /// ```
 /// use embedded_raytracer::{Method, SphereTest, Stepping, Sqrt};
 /// let m = Method::default();
-/// assert_eq!((m.stepping, m.sphere_test, m.sqrt), (Stepping::Direct, SphereTest::Robust, Sqrt::Exact));
+/// assert_eq!((m.stepping, m.sphere_test, m.sqrt), (Stepping::Direct, SphereTest::Auto, Sqrt::Exact));
 /// assert_eq!("world-space".parse::<Stepping>(), Ok(Stepping::WorldSpace));
-/// assert_eq!(m.to_string(), "direct/robust/exact");
+/// assert_eq!("forward-diff".parse::<SphereTest>(), Ok(SphereTest::ForwardDiff));
+/// assert_eq!(m.to_string(), "direct/auto/exact");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Method {
@@ -89,7 +109,7 @@ pub struct Method {
 
 impl Method {
     /// The default method (see the type's docs).
-    pub const DEFAULT: Method = Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact);
+    pub const DEFAULT: Method = Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact);
 
     /// The seed taken literally: world-space stepping, the quadratic, exact root.
     pub const LITERAL: Method = Method::new(Stepping::WorldSpace, SphereTest::Algebraic, Sqrt::Exact);
@@ -107,14 +127,20 @@ impl Method {
     /// Every combination, for charts and sweeps.
     // Indexing in a const initialiser is checked at compile time.
     #[allow(clippy::indexing_slicing)]
-    pub const ALL: [Method; 18] = {
+    pub const ALL: [Method; 30] = {
         let steppings = [Stepping::WorldSpace, Stepping::Incremental, Stepping::Direct];
-        let tests = [SphereTest::Algebraic, SphereTest::Geometric, SphereTest::Robust];
+        let tests = [
+            SphereTest::Algebraic,
+            SphereTest::Geometric,
+            SphereTest::Robust,
+            SphereTest::ForwardDiff,
+            SphereTest::Auto,
+        ];
         let sqrts = [Sqrt::Exact, Sqrt::Fast];
-        let mut all = [Method::DEFAULT; 18];
+        let mut all = [Method::DEFAULT; 30];
         let mut k = 0;
-        while k < 18 {
-            all[k] = Method::new(steppings[k / 6], tests[(k / 2) % 3], sqrts[k % 2]);
+        while k < 30 {
+            all[k] = Method::new(steppings[k / 10], tests[(k / 2) % 5], sqrts[k % 2]);
             k += 1;
         }
         all
@@ -155,7 +181,7 @@ macro_rules! named_enum {
 }
 
 named_enum!(Stepping, "stepping", WorldSpace => "world-space", Incremental => "incremental", Direct => "direct");
-named_enum!(SphereTest, "sphere test", Algebraic => "algebraic", Geometric => "geometric", Robust => "robust");
+named_enum!(SphereTest, "sphere test", Algebraic => "algebraic", Geometric => "geometric", Robust => "robust", ForwardDiff => "forward-diff", Auto => "auto");
 named_enum!(Sqrt, "sqrt", Exact => "exact", Fast => "fast");
 
 impl fmt::Display for Method {
@@ -205,6 +231,7 @@ pub struct Render<'a, const N: usize, C = Rgb888> {
     scene: &'a Scene<N>,
     camera: &'a Camera,
     method: Method,
+    options: Options,
     offset: Point,
     color: PhantomData<C>,
 }
@@ -217,6 +244,7 @@ impl<'a, const N: usize, C> Render<'a, N, C> {
             scene,
             camera,
             method: Method::DEFAULT,
+            options: Options::DEFAULT,
             offset: Point::zero(),
             color: PhantomData,
         }
@@ -234,6 +262,26 @@ impl<'a, const N: usize, C> Render<'a, N, C> {
     #[must_use]
     pub const fn with_offset(mut self, offset: Point) -> Self {
         self.offset = offset;
+        self
+    }
+
+    /// The same render with span culling on (the default) or off. Off, every sphere is
+    /// tested at every pixel — the seed's algorithm taken literally, for the benchmark
+    /// baseline and the tests that prove culling changes no pixel.
+    #[doc(hidden)]
+    #[must_use]
+    pub const fn with_span_culling(mut self, on: bool) -> Self {
+        self.options.culling = on;
+        self
+    }
+
+    /// The same render with another anchor interval K for the forward-differenced
+    /// test (default [`FD_ANCHOR_INTERVAL`]; `0` is taken as 1). For the measurement
+    /// of the error against K.
+    #[doc(hidden)]
+    #[must_use]
+    pub const fn with_anchor_interval(mut self, k: u32) -> Self {
+        self.options.anchor = if k == 0 { 1 } else { k };
         self
     }
 
@@ -259,6 +307,7 @@ impl<'a, const N: usize, C> Render<'a, N, C> {
             self.scene,
             self.camera,
             self.method,
+            self.options,
             full,
             Point::zero(),
             &mut sink,
@@ -282,7 +331,15 @@ where
             target,
             color: PhantomData,
         };
-        dispatch(self.scene, self.camera, self.method, clip, self.offset, &mut sink)
+        dispatch(
+            self.scene,
+            self.camera,
+            self.method,
+            self.options,
+            clip,
+            self.offset,
+            &mut sink,
+        )
     }
 }
 
@@ -301,8 +358,20 @@ impl<D: DrawTarget<Color = C>, C: PixelColor + From<Rgb888>> RowSink for DrawSin
     type Error = D::Error;
     #[inline(always)]
     fn row<I: Iterator<Item = Sample>>(&mut self, area: Rectangle, pixels: I) -> Result<(), D::Error> {
-        self.target
-            .fill_contiguous(&area, pixels.map(|s| C::from(s.color)))
+        // Convert colours through a one-entry cache: runs of background (and of a flat
+        // shade) cost a 3-byte compare instead of a conversion per pixel.
+        let mut last: Option<(Rgb888, C)> = None;
+        self.target.fill_contiguous(
+            &area,
+            pixels.map(move |s| match last {
+                Some((rgb, c)) if rgb == s.color => c,
+                _ => {
+                    let c = C::from(s.color);
+                    last = Some((s.color, c));
+                    c
+                }
+            }),
+        )
     }
 }
 
@@ -316,17 +385,32 @@ impl<F: FnMut(Sample)> RowSink for TraceSink<'_, F> {
     }
 }
 
+/// Per-frame render options besides the method (culling, anchor interval).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Options {
+    culling: bool,
+    anchor: u32,
+}
+
+impl Options {
+    const DEFAULT: Options = Options {
+        culling: true,
+        anchor: FD_ANCHOR_INTERVAL,
+    };
+}
+
 /// The once-per-frame `match` on the method, down to a monomorphised frame loop.
 fn dispatch<const N: usize, K: RowSink>(
     scene: &Scene<N>,
     camera: &Camera,
     method: Method,
+    options: Options,
     clip: Rectangle,
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
     fn with_test<const N: usize, K: RowSink, S: Stepper>(
-        f: Frame<'_, N>,
+        f: &mut Frame<'_, N>,
         method: Method,
         sink: &mut K,
     ) -> Result<(), K::Error> {
@@ -334,10 +418,12 @@ fn dispatch<const N: usize, K: RowSink>(
             SphereTest::Algebraic => with_sqrt::<N, K, S, Algebraic>(f, method, sink),
             SphereTest::Geometric => with_sqrt::<N, K, S, Geometric>(f, method, sink),
             SphereTest::Robust => with_sqrt::<N, K, S, Robust>(f, method, sink),
+            SphereTest::ForwardDiff => with_sqrt::<N, K, S, ForwardDiff>(f, method, sink),
+            SphereTest::Auto => with_sqrt::<N, K, S, Auto>(f, method, sink),
         }
     }
-    fn with_sqrt<const N: usize, K: RowSink, S: Stepper, T: HitTest>(
-        f: Frame<'_, N>,
+    fn with_sqrt<const N: usize, K: RowSink, S: Stepper, T: RowTest>(
+        f: &mut Frame<'_, N>,
         method: Method,
         sink: &mut K,
     ) -> Result<(), K::Error> {
@@ -347,20 +433,31 @@ fn dispatch<const N: usize, K: RowSink>(
         }
     }
 
-    let Some(frame) = Frame::new(scene, camera, clip, offset) else {
+    let step_err = match method.stepping {
+        Stepping::WorldSpace => WorldSpaceStep::error_bound(camera),
+        Stepping::Incremental => IncrementalStep::error_bound(camera),
+        Stepping::Direct => DirectStep::error_bound(camera),
+    };
+    let Some(mut frame) = Frame::new(scene, camera, method, options, step_err, clip, offset) else {
         return Ok(()); // nothing visible
     };
     match method.stepping {
-        Stepping::WorldSpace => with_test::<N, K, WorldSpaceStep>(frame, method, sink),
-        Stepping::Incremental => with_test::<N, K, IncrementalStep>(frame, method, sink),
-        Stepping::Direct => with_test::<N, K, DirectStep>(frame, method, sink),
+        Stepping::WorldSpace => with_test::<N, K, WorldSpaceStep>(&mut frame, method, sink),
+        Stepping::Incremental => with_test::<N, K, IncrementalStep>(&mut frame, method, sink),
+        Stepping::Direct => with_test::<N, K, DirectStep>(&mut frame, method, sink),
     }
+}
+
+/// A sphere as the frame sees it: its per-frame constants and its silhouette.
+struct FrameSphere {
+    consts: SphereConsts,
+    silhouette: Silhouette,
 }
 
 /// Per-frame state: the visible part of the image and each sphere's constants.
 struct Frame<'a, const N: usize> {
     camera: &'a Camera,
-    spheres: Vec<SphereConsts, N>,
+    spheres: Vec<FrameSphere, N>,
     background: Rgb888,
     /// Visible columns `i0..i1` and rows `j0..j1` of the image.
     i0: u32,
@@ -372,7 +469,16 @@ struct Frame<'a, const N: usize> {
 
 impl<'a, const N: usize> Frame<'a, N> {
     /// Clips the image (placed at `offset`) to `clip`; `None` if nothing is visible.
-    fn new(scene: &Scene<N>, camera: &'a Camera, clip: Rectangle, offset: Point) -> Option<Self> {
+    /// `step_err` bounds how far the stepping's directions are from the ideal ones.
+    fn new(
+        scene: &Scene<N>,
+        camera: &'a Camera,
+        method: Method,
+        options: Options,
+        step_err: f32,
+        clip: Rectangle,
+        offset: Point,
+    ) -> Option<Self> {
         let size = camera.size();
         // Clip in i64: no overflow for any offset or target size.
         let span = |origin: i32, len: u32, clip_origin: i32, clip_len: u32| {
@@ -382,13 +488,29 @@ impl<'a, const N: usize> Frame<'a, N> {
         };
         let (i0, i1) = span(offset.x, size.width, clip.top_left.x, clip.size.width)?;
         let (j0, j1) = span(offset.y, size.height, clip.top_left.y, clip.size.height)?;
-        // Per-sphere constants, once per frame.
+        // Per-sphere constants and silhouettes, once per frame.
         let eye = camera.eye();
         let w = camera.w();
+        let margin = match method.sphere_test {
+            SphereTest::Algebraic | SphereTest::Geometric => Margin::Quadratic,
+            SphereTest::Robust | SphereTest::ForwardDiff | SphereTest::Auto => Margin::Linear,
+        };
         let spheres = scene
             .spheres()
             .iter()
-            .map(|s| SphereConsts::new(s, eye, w))
+            .map(|s| {
+                let consts = SphereConsts::new(s, eye, w).with_row_step(
+                    camera.pixel_step(),
+                    options.anchor,
+                    camera.pixel_width(),
+                );
+                let silhouette = if options.culling {
+                    Silhouette::new(consts.l, s.radius, camera, margin, step_err)
+                } else {
+                    Silhouette::All
+                };
+                FrameSphere { consts, silhouette }
+            })
             .collect();
         Some(Self {
             camera,
@@ -402,13 +524,32 @@ impl<'a, const N: usize> Frame<'a, N> {
         })
     }
 
-    /// The frame loop for one method: per row, set up the stepper and hand the row's
-    /// pixel iterator to the sink.
-    fn run<K: RowSink, S: Stepper, T: HitTest, Q: SqrtFn>(&self, sink: &mut K) -> Result<(), K::Error> {
+    /// The frame loop for one method: per row, set up the stepper, cut every sphere's
+    /// silhouette with the scanline (the row's active spheres, in scene order), and hand
+    /// the row's pixel iterator to the sink.
+    fn run<K: RowSink, S: Stepper, T: RowTest, Q: SqrtFn>(&mut self, sink: &mut K) -> Result<(), K::Error> {
         let mut stepper = S::new(self.camera);
         let width = self.i1 - self.i0;
+        let mut active: Vec<Active<'_, T::State>, N> = Vec::new();
         for j in self.j0..self.j1 {
-            stepper.start_row(j, self.i0);
+            let row_step = stepper.start_row(j, self.i0);
+            // Per row: the spheres whose span meets this row, and the union of the spans.
+            active.clear();
+            let (mut lo_all, mut hi_all) = (self.i1, self.i0);
+            for (index, fs) in self.spheres.iter().enumerate() {
+                if let Some((lo, hi)) = fs.silhouette.row_span(j, self.i0, self.i1) {
+                    lo_all = lo_all.min(lo);
+                    hi_all = hi_all.max(hi);
+                    // Cannot fail: at most N spheres.
+                    let _ = active.push(Active {
+                        index,
+                        lo,
+                        hi,
+                        consts: &fs.consts,
+                        state: T::row_start(lo),
+                    });
+                }
+            }
             // Visible rows and columns fit in the target's i32 coordinates.
             let area = Rectangle::new(
                 Point::new(
@@ -418,8 +559,10 @@ impl<'a, const N: usize> Frame<'a, N> {
                 Size::new(width, 1),
             );
             let row = RowPixels::<S, T, Q> {
-                stepper: &mut stepper,
-                spheres: &self.spheres,
+                stepper: row_step,
+                active: &mut active,
+                lo_all,
+                hi_all,
                 w: self.camera.w(),
                 background: self.background,
                 i: self.i0,
@@ -433,10 +576,25 @@ impl<'a, const N: usize> Frame<'a, N> {
     }
 }
 
+/// A sphere whose span meets the current row.
+struct Active<'s, St> {
+    /// Index in the scene.
+    index: usize,
+    /// Columns `[lo, hi)` whose rays can hit it.
+    lo: u32,
+    hi: u32,
+    consts: &'s SphereConsts,
+    /// The test's per-row state (forward differences).
+    state: St,
+}
+
 /// The pixels of one scanline, traced as the sink pulls them.
-struct RowPixels<'r, S, T, Q> {
-    stepper: &'r mut S,
-    spheres: &'r [SphereConsts],
+struct RowPixels<'r, 's, S: Stepper, T: RowTest, Q> {
+    stepper: S::Row,
+    active: &'r mut [Active<'s, T::State>],
+    /// Union of the active spans: outside it a pixel is background without a test.
+    lo_all: u32,
+    hi_all: u32,
     w: Vec3,
     background: Rgb888,
     i: u32,
@@ -445,25 +603,40 @@ struct RowPixels<'r, S, T, Q> {
     strategy: PhantomData<(T, Q)>,
 }
 
-impl<S: Stepper, T: HitTest, Q: SqrtFn> Iterator for RowPixels<'_, S, T, Q> {
+impl<S: Stepper, T: RowTest, Q: SqrtFn> Iterator for RowPixels<'_, '_, S, T, Q> {
     type Item = Sample;
 
     #[inline(always)]
     fn next(&mut self) -> Option<Sample> {
-        if self.i >= self.end {
+        let i = self.i;
+        if i >= self.end {
             return None;
         }
-        let pixel = Point::new(self.i as i32, self.j as i32);
+        let pixel = Point::new(i as i32, self.j as i32);
         self.i += 1;
         // Form the ray from the eye through the pixel centre.
         let d = self.stepper.next_direction();
-        let a = d.dot(d);
-        // Closest hit over all spheres, then Lab #1 shading with the view-space normal:
+        let mut best: Option<(usize, f32, &SphereConsts)> = None;
+        if i >= self.lo_all && i < self.hi_all {
+            let a = d.dot(d);
+            // Closest hit over the spheres whose span holds this column, in scene order;
+            // each test gets the nearest t so far as its t_max.
+            let mut t_max = f32::INFINITY;
+            for act in self.active.iter_mut() {
+                if i >= act.lo && i < act.hi {
+                    if let Some(t) = T::hit::<Q>(&mut act.state, act.consts, d, a, i, t_max) {
+                        t_max = t;
+                        best = Some((act.index, t, act.consts));
+                    }
+                }
+            }
+        }
+        // Lab #1 shading with the view-space normal:
         // n·(−w) = ((L − t·d)·w)/r, camera-relative so |eye| does not cost precision.
-        let (hit, color) = match closest::<T, Q>(self.spheres, d, a) {
+        let (hit, color) = match best {
             Some((index, t, s)) => {
                 let n_z = (s.lw - t * d.dot(self.w)) * s.inv_r;
-                (Some(Hit { index, t }), shade::lab1(s.color, n_z))
+                (Some(Hit { index, t }), shade::lab1_channels(s.rgb, n_z))
             }
             None => (None, self.background),
         };
@@ -481,14 +654,39 @@ impl<S: Stepper, T: HitTest, Q: SqrtFn> Iterator for RowPixels<'_, S, T, Q> {
     }
 }
 
-/// How the ray direction advances: a strategy type per [`Stepping`].
+/// How the ray direction advances: a strategy type per [`Stepping`]. The frame-level
+/// stepper hands out a small per-row stepper by value, so the pixel loop keeps it in
+/// registers.
 trait Stepper {
+    /// The per-row stepper.
+    type Row: RowStep;
     fn new(camera: &Camera) -> Self;
+    /// A bound `E` on `|d − (F + i·du + j·dv)|` (exact arithmetic on the camera's f32
+    /// `F`, `du`, `dv`) over the whole image, for span culling's margin. Each f32
+    /// addition or product rounds by at most 2⁻²⁴ of its result's norm.
+    fn error_bound(camera: &Camera) -> f32;
     /// Prepare row `j`, starting at column `i0`. Rows come in increasing order.
-    fn start_row(&mut self, j: u32, i0: u32);
+    fn start_row(&mut self, j: u32, i0: u32) -> Self::Row;
+}
+
+/// A row's direction stepper.
+trait RowStep {
     /// The current pixel's direction `p − eye`; advances one pixel.
     fn next_direction(&mut self) -> Vec3;
 }
+
+/// `(|F| + H·|dv| + W·|du|, W, H)`: the largest ideal direction and the image size.
+fn extent(camera: &Camera) -> (f32, f32, f32) {
+    let size = camera.size();
+    let (w, h) = (size.width as f32, size.height as f32);
+    let s = camera.first_direction().length()
+        + h * camera.scanline_step().length()
+        + w * camera.pixel_step().length();
+    (s, w, h)
+}
+
+/// 2⁻²³: twice the unit roundoff, a safety factor of 2 on every count below.
+const ROUNDING: f32 = 1.0 / 8_388_608.0;
 
 /// The slides verbatim: world-space pixel centres.
 struct WorldSpaceStep {
@@ -498,10 +696,25 @@ struct WorldSpaceStep {
     scanline_start: Vec3,
     /// The row `scanline_start` belongs to.
     row: u32,
+}
+
+/// A world-space row: the pixel centre, stepped by `du`.
+struct WorldSpaceRow {
+    eye: Vec3,
+    du: Vec3,
     pixel_center: Vec3,
 }
 
 impl Stepper for WorldSpaceStep {
+    type Row = WorldSpaceRow;
+
+    fn error_bound(camera: &Camera) -> f32 {
+        // `upper_left_world` (≤ 6 roundings of size |eye| + S), j additions of dv and
+        // i additions of du (each ≤ 2⁻²⁴·|p|, |p| ≤ |eye| + S), and `p − eye`.
+        let (s, w, h) = extent(camera);
+        ROUNDING * (w + h + 8.0) * (camera.eye().length() + s)
+    }
+
     fn new(camera: &Camera) -> Self {
         Self {
             eye: camera.eye(),
@@ -509,23 +722,29 @@ impl Stepper for WorldSpaceStep {
             dv: camera.scanline_step(),
             scanline_start: camera.upper_left_world(),
             row: 0,
-            pixel_center: camera.upper_left_world(),
         }
     }
 
-    fn start_row(&mut self, j: u32, i0: u32) {
+    fn start_row(&mut self, j: u32, i0: u32) -> WorldSpaceRow {
         // scanlineStart −= ph·v, once per scanline (also for clipped rows, so a clipped
         // render sees exactly the rounding of a full one).
         while self.row < j {
             self.scanline_start += self.dv;
             self.row += 1;
         }
-        self.pixel_center = self.scanline_start;
+        let mut pixel_center = self.scanline_start;
         for _ in 0..i0 {
-            self.pixel_center += self.du;
+            pixel_center += self.du;
+        }
+        WorldSpaceRow {
+            eye: self.eye,
+            du: self.du,
+            pixel_center,
         }
     }
+}
 
+impl RowStep for WorldSpaceRow {
     #[inline(always)]
     fn next_direction(&mut self) -> Vec3 {
         let d = self.pixel_center - self.eye;
@@ -539,28 +758,43 @@ struct IncrementalStep {
     first: Vec3,
     du: Vec3,
     dv: Vec3,
+}
+
+/// An incremental row: the direction, stepped by `du`.
+struct IncrementalRow {
+    du: Vec3,
     d: Vec3,
 }
 
 impl Stepper for IncrementalStep {
+    type Row = IncrementalRow;
+
+    fn error_bound(camera: &Camera) -> f32 {
+        // The row anchor `F + dv·j` (2 roundings) and i additions of du (≤ 2⁻²⁴·S each).
+        let (s, w, _) = extent(camera);
+        ROUNDING * (w + 4.0) * s
+    }
+
     fn new(camera: &Camera) -> Self {
         Self {
             first: camera.first_direction(),
             du: camera.pixel_step(),
             dv: camera.scanline_step(),
-            d: camera.first_direction(),
         }
     }
 
-    fn start_row(&mut self, j: u32, i0: u32) {
+    fn start_row(&mut self, j: u32, i0: u32) -> IncrementalRow {
         // Anchor the scanline exactly (per-row work), then step to the first visible
         // column the same way the pixel loop does.
-        self.d = self.first + self.dv * j as f32;
+        let mut d = self.first + self.dv * j as f32;
         for _ in 0..i0 {
-            self.d += self.du;
+            d += self.du;
         }
+        IncrementalRow { du: self.du, d }
     }
+}
 
+impl RowStep for IncrementalRow {
     #[inline(always)]
     fn next_direction(&mut self) -> Vec3 {
         let d = self.d;
@@ -574,26 +808,42 @@ struct DirectStep {
     first: Vec3,
     du: Vec3,
     dv: Vec3,
+}
+
+/// A direct row: the row's first direction and the column.
+struct DirectRow {
     row: Vec3,
+    du: Vec3,
     i: u32,
 }
 
 impl Stepper for DirectStep {
+    type Row = DirectRow;
+
+    fn error_bound(camera: &Camera) -> f32 {
+        // `F + dv·j` and `+ du·i`: four roundings of size ≤ S.
+        let (s, _, _) = extent(camera);
+        ROUNDING * 8.0 * s
+    }
+
     fn new(camera: &Camera) -> Self {
         Self {
             first: camera.first_direction(),
             du: camera.pixel_step(),
             dv: camera.scanline_step(),
-            row: camera.first_direction(),
-            i: 0,
         }
     }
 
-    fn start_row(&mut self, j: u32, i0: u32) {
-        self.row = self.first + self.dv * j as f32;
-        self.i = i0;
+    fn start_row(&mut self, j: u32, i0: u32) -> DirectRow {
+        DirectRow {
+            row: self.first + self.dv * j as f32,
+            du: self.du,
+            i: i0,
+        }
     }
+}
 
+impl RowStep for DirectRow {
     #[inline(always)]
     fn next_direction(&mut self) -> Vec3 {
         let d = self.row + self.du * self.i as f32;

@@ -6,7 +6,7 @@ use heapless::Vec;
 use crate::error::SceneError;
 use crate::math::{ExactSqrt, FastSqrt, SqrtFn};
 use crate::render::{SphereTest, Sqrt};
-use crate::sphere::{Algebraic, Geometric, HitTest, Robust, Sphere, SphereConsts};
+use crate::sphere::{Algebraic, ForwardDiff, Geometric, HitTest, Robust, Sphere, SphereConsts};
 use crate::vec3::Vec3;
 
 /// Up to `N` spheres and a background colour. No allocation: the spheres live in a
@@ -123,6 +123,13 @@ impl<const N: usize> Scene<N> {
             (SphereTest::Geometric, Sqrt::Fast) => search::<Geometric, FastSqrt, N>(s, origin, dir),
             (SphereTest::Robust, Sqrt::Exact) => search::<Robust, ExactSqrt, N>(s, origin, dir),
             (SphereTest::Robust, Sqrt::Fast) => search::<Robust, FastSqrt, N>(s, origin, dir),
+            // One ray: the forward-differenced test at an anchor (direct evaluation).
+            (SphereTest::ForwardDiff | SphereTest::Auto, Sqrt::Exact) => {
+                search::<ForwardDiff, ExactSqrt, N>(s, origin, dir)
+            }
+            (SphereTest::ForwardDiff | SphereTest::Auto, Sqrt::Fast) => {
+                search::<ForwardDiff, FastSqrt, N>(s, origin, dir)
+            }
         }
     }
 }

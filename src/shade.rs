@@ -23,17 +23,33 @@ pub const AMBIENT: f32 = 0.3;
 #[must_use]
 #[inline]
 pub fn lab1(color: Rgb888, n_z: f32) -> Rgb888 {
+    lab1_channels(channels(color), n_z)
+}
+
+/// An object colour's channels as `f32` (exact), converted once per frame so the pixel
+/// loop does not convert them per hit.
+#[must_use]
+#[inline]
+pub(crate) fn channels(color: Rgb888) -> [f32; 3] {
+    [f32::from(color.r()), f32::from(color.g()), f32::from(color.b())]
+}
+
+/// [`lab1`] on pre-converted channels: bit-identical (the u8 → f32 conversion is exact).
+#[inline(always)]
+pub(crate) fn lab1_channels(c: [f32; 3], n_z: f32) -> Rgb888 {
     // max/min (not clamp) so a NaN picks the bound instead of propagating.
     #[allow(clippy::manual_clamp)]
     let k = n_z.max(AMBIENT).min(1.0);
-    Rgb888::new(scale(color.r(), k), scale(color.g(), k), scale(color.b(), k))
+    let [r, g, b] = c;
+    Rgb888::new(scale(r, k), scale(g, k), scale(b, k))
 }
 
-/// `round(channel × k)` for `k ∈ [0.3, 1]`: at most 255.5 before the truncating cast,
-/// so it cannot overflow.
+/// `round(channel × k)` for `k ∈ [0.3, 1]` and a channel in `0 … 255`: in
+/// `[0, 255.5]` before the truncating cast, so truncation through `i32` (one
+/// instruction) equals the saturating `as u8` and cannot overflow.
 #[inline(always)]
-fn scale(channel: u8, k: f32) -> u8 {
-    (channel as f32 * k + 0.5) as u8
+fn scale(channel: f32, k: f32) -> u8 {
+    (channel * k + 0.5) as i32 as u8
 }
 
 #[cfg(test)]

@@ -1,0 +1,407 @@
+//! The fast path changes no pixel: span culling is proven bit for bit against the
+//! unculled render (every method, every standard scene, randomized scenes including an
+//! eye inside a sphere, spheres behind the eye and spheres crossing the eye plane), and
+//! the forward-differenced test is measured against the robust test as a function of
+//! its anchor interval K.
+
+use embedded_graphics::pixelcolor::Rgb888;
+use embedded_graphics::prelude::*;
+use embedded_raytracer::{
+    scene_file, Camera, Method, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3,
+};
+
+const SCENES: [&str; 5] = ["lab", "crowd", "far", "grazing", "drift"];
+
+fn load(name: &str) -> scene_file::SceneFile<64> {
+    let path = format!("{}/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    scene_file::load::<64>(&path).unwrap()
+}
+
+/// Everything a pixel is: hit sphere and t (bits), colour, direction (bits).
+type Pixel = (Option<(usize, u32)>, Rgb888, [u32; 3]);
+
+fn trace<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, culling: bool) -> Vec<Pixel> {
+    let mut out = Vec::new();
+    Render::<N, Rgb888>::new(scene, camera)
+        .with_method(method)
+        .with_span_culling(culling)
+        .trace(|s| {
+            out.push((
+                s.hit.map(|h| (h.index, h.t.to_bits())),
+                s.color,
+                [
+                    s.direction.x.to_bits(),
+                    s.direction.y.to_bits(),
+                    s.direction.z.to_bits(),
+                ],
+            ))
+        });
+    out
+}
+
+/// The methods whose pixels do not depend on where a row's evaluation starts: all but
+/// the forward-differenced ones (their anchors sit at the span starts by design).
+fn span_invariant(m: &Method) -> bool {
+    !matches!(m.sphere_test, SphereTest::ForwardDiff | SphereTest::Auto)
+}
+
+/// A smaller camera with the same view (the big `drift` image would take minutes in a
+/// debug build), keeping the pixel pitch large enough that the world-space drift stays.
+fn shrink(camera: &Camera, width: u32, height: u32) -> Camera {
+    let mut p = *camera.params();
+    let scale = width as f32 / p.size.width as f32;
+    p.fov_y = 2.0 * ((p.fov_y / 2.0).tan() * (height as f32 / p.size.height as f32) / scale * scale).atan();
+    p.size = Size::new(width, height);
+    p.build().unwrap()
+}
+
+#[test]
+fn culling_changes_no_pixel_on_the_standard_scenes() {
+    for name in SCENES {
+        let file = load(name);
+        // drift at full size is 2 Mpixel: render its central 480x270 window of the same
+        // pixel pitch instead (same eye, same world-space rounding magnitudes).
+        let camera = if name == "drift" {
+            shrink(&file.camera, 480, 270)
+        } else {
+            file.camera
+        };
+        for method in Method::ALL.iter().filter(|m| span_invariant(m)) {
+            let culled = trace(&file.scene, &camera, *method, true);
+            let full = trace(&file.scene, &camera, *method, false);
+            let diff = culled.iter().zip(&full).filter(|(a, b)| a != b).count();
+            assert_eq!(diff, 0, "{name} {method}: {diff} pixels changed by culling");
+        }
+    }
+}
+
+/// xorshift64*: deterministic, no dependency.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f32 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32) / (1u64 << 24) as f32
+    }
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.next()
+    }
+    fn vec(&mut self, s: f32) -> Vec3 {
+        Vec3::new(self.range(-s, s), self.range(-s, s), self.range(-s, s))
+    }
+}
+
+/// A random scene around a random camera: spheres in front, behind, crossing the
+/// plane through the eye, containing the eye, far and tiny, huge and near.
+fn random_case(rng: &mut Rng) -> (Scene<12>, Camera) {
+    let spread = if rng.next() < 0.3 { 2000.0 } else { 5.0 };
+    let eye = rng.vec(spread);
+    let look = eye + rng.vec(1.0) + Vec3::new(0.0, 0.0, -0.5);
+    let fov = if rng.next() < 0.2 {
+        rng.range(0.001, 0.05)
+    } else {
+        rng.range(0.3, 2.8)
+    };
+    let size = Size::new(rng.range(8.0, 72.0) as u32, rng.range(8.0, 56.0) as u32);
+    let camera = Camera::new(eye, look, Vec3::new(0.0, 1.0, 0.0), fov, size)
+        .or_else(|_| Camera::new(eye, look, Vec3::new(1.0, 0.0, 0.0), fov, size))
+        .unwrap();
+    let w = camera.w();
+    let mut scene = Scene::new(Rgb888::new(1, 2, 3));
+    for k in 0..12 {
+        let color = Rgb888::new(40 + 17 * k as u8, 255 - 13 * k as u8, 90);
+        let sphere = match k % 6 {
+            // In front, on or near the view axis, at a random distance/radius.
+            0 | 1 => {
+                let dist = rng.range(1.5, 50.0);
+                let dir = w + camera.u() * rng.range(-0.8, 0.8) + camera.v() * rng.range(-0.6, 0.6);
+                let r = dist * rng.range(0.001, 0.4);
+                Sphere::new(eye + dir * dist, r, color)
+            }
+            // Behind the eye.
+            2 => Sphere::new(
+                eye - w * rng.range(1.0, 10.0) + rng.vec(1.0),
+                rng.range(0.2, 2.0),
+                color,
+            ),
+            // Crossing the plane through the eye parallel to the image.
+            3 => Sphere::new(
+                eye + camera.u() * rng.range(-3.0, 3.0) + w * rng.range(-0.5, 0.5),
+                rng.range(0.5, 4.0),
+                color,
+            ),
+            // Containing the eye (sometimes only just).
+            4 => {
+                let r = rng.range(0.5, 30.0);
+                Sphere::new(eye + rng.vec(1.0) * (r * rng.range(0.0, 0.57)), r, color)
+            }
+            // Far and tiny (distance/radius up to 1e5) in the field of view.
+            _ => {
+                let dist = rng.range(10.0, 5000.0);
+                let dir =
+                    w + camera.u() * rng.range(-0.01, 0.01) * fov + camera.v() * rng.range(-0.01, 0.01) * fov;
+                Sphere::new(eye + dir * dist, dist * rng.range(1e-5, 1e-2), color)
+            }
+        };
+        scene.push(sphere).unwrap();
+    }
+    (scene, camera)
+}
+
+#[test]
+fn culling_changes_no_pixel_on_random_scenes() {
+    // More cases and another seed from the environment for a longer soak, e.g.
+    // `SPEED_CASES=5000 SPEED_SEED=7 cargo test --release --test speed random`.
+    let env = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<u64>().ok());
+    let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ env("SPEED_SEED").unwrap_or(0));
+    let mut hits = 0usize;
+    for case in 0..env("SPEED_CASES").unwrap_or(60) {
+        let (scene, camera) = random_case(&mut rng);
+        for method in Method::ALL.iter().filter(|m| span_invariant(m)) {
+            let culled = trace(&scene, &camera, *method, true);
+            let full = trace(&scene, &camera, *method, false);
+            hits += full.iter().filter(|p| p.0.is_some()).count();
+            let diff: Vec<_> = culled
+                .iter()
+                .zip(&full)
+                .enumerate()
+                .filter(|(_, (a, b))| a != b)
+                .map(|(k, (a, b))| (k, *a, *b))
+                .take(3)
+                .collect();
+            assert!(
+                diff.is_empty(),
+                "case {case} {method}: culling changed pixels {diff:?}\n{scene:?}\n{camera:?}"
+            );
+        }
+    }
+    // The scenes are not empty: many rays hit (else the comparison proves nothing).
+    assert!(hits > 100_000, "only {hits} hits");
+}
+
+/// Pixels whose hit/miss differs, and pixels whose colour differs, between two traces.
+fn compare(a: &[Pixel], b: &[Pixel]) -> (usize, usize, u8) {
+    let coverage = a
+        .iter()
+        .zip(b)
+        .filter(|(x, y)| x.0.is_some() != y.0.is_some())
+        .count();
+    let shade = a.iter().zip(b).filter(|(x, y)| x.1 != y.1).count();
+    // Largest channel difference among pixels both traces hit on the same sphere.
+    let level = a
+        .iter()
+        .zip(b)
+        .filter(|(x, y)| x.0.map(|h| h.0) == y.0.map(|h| h.0))
+        .map(|(x, y)| {
+            let d = |p: u8, q: u8| p.abs_diff(q);
+            d(x.1.r(), y.1.r())
+                .max(d(x.1.g(), y.1.g()))
+                .max(d(x.1.b(), y.1.b()))
+        })
+        .max()
+        .unwrap_or(0);
+    (coverage, shade, level)
+}
+
+fn trace_k<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, k: u32) -> Vec<Pixel> {
+    let mut out = Vec::new();
+    Render::<N, Rgb888>::new(scene, camera)
+        .with_method(method)
+        .with_anchor_interval(k)
+        .trace(|s| out.push((s.hit.map(|h| (h.index, h.t.to_bits())), s.color, [0; 3])));
+    out
+}
+
+/// The measurement K is chosen from (prints a table with `--nocapture`): coverage flips
+/// and colour differences of the forward-differenced test against the robust test on
+/// every standard scene, for K = 1 … 8192. The chosen K must be as good as K = 1.
+#[test]
+fn forward_diff_error_against_k() {
+    let fd = Method::new(Stepping::Incremental, SphereTest::ForwardDiff, Sqrt::Exact);
+    let robust = Method::new(Stepping::Incremental, SphereTest::Robust, Sqrt::Exact);
+    println!("scene       K  coverage  colour  max-level");
+    for name in SCENES {
+        let file = load(name);
+        let camera = if name == "drift" {
+            shrink(&file.camera, 480, 270)
+        } else {
+            file.camera
+        };
+        let reference = trace_k(&file.scene, &camera, robust, 1);
+        let at_one = compare(&trace_k(&file.scene, &camera, fd, 1), &reference);
+        for k in [1, 2, 4, 8, 16, 32, 64, 256, 1024, 8192] {
+            let (coverage, shade, level) = compare(&trace_k(&file.scene, &camera, fd, k), &reference);
+            println!("{name:8} {k:6} {coverage:9} {shade:7} {level:10}");
+            if k == embedded_raytracer::sphere::FD_ANCHOR_INTERVAL {
+                // The chosen K: no more coverage flips than K = 1, colours within one level.
+                assert!(
+                    coverage <= at_one.0 && level <= 1,
+                    "{name} K={k}: {coverage}/{shade}/{level} vs K=1 {at_one:?}"
+                );
+            }
+        }
+        // A coverage flip only at the silhouette: a handful per scene at most.
+        assert!(at_one.0 <= 8, "{name}: {at_one:?}");
+    }
+}
+
+/// Where the forward differences break: a sphere filling an 8192-wide row with no
+/// re-anchoring (K = 8192) flips edge pixels against the robust test; the default K does not.
+#[test]
+fn forward_diff_breaks_without_anchors_on_a_huge_row() {
+    let scene: Scene<1> = Scene::from_array([Sphere::new(Vec3::ZERO, 1.0, Rgb888::WHITE)], Rgb888::BLACK);
+    let camera = Camera::new(
+        Vec3::new(0.0, 0.0, 1.05),
+        Vec3::ZERO,
+        Vec3::new(0.0, 1.0, 0.0),
+        2.6,
+        Size::new(8192, 3),
+    )
+    .unwrap();
+    let fd = Method::new(Stepping::Direct, SphereTest::ForwardDiff, Sqrt::Exact);
+    let robust = Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact);
+    let reference = trace_k(&scene, &camera, robust, 1);
+    let k = embedded_raytracer::sphere::FD_ANCHOR_INTERVAL;
+    let (good, _, _) = compare(&trace_k(&scene, &camera, fd, k), &reference);
+    let (bad, _, _) = compare(&trace_k(&scene, &camera, fd, 8192), &reference);
+    println!("8192-wide row: K={k} {good} flips, K=8192 {bad} flips");
+    assert!(good <= 2, "K = {k}: {good}");
+    assert!(bad > good, "K = 8192 should break: {bad}");
+}
+
+fn trace_method<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method) -> Vec<Pixel> {
+    trace(scene, camera, method, true)
+}
+
+/// `Auto` is forward differences for every sphere whose bound allows it (all of the
+/// lab scene's), and the robust test for a sphere containing the eye: bit for bit.
+#[test]
+fn auto_picks_forward_diff_or_robust_per_sphere() {
+    let lab = load("lab");
+    for stepping in [Stepping::Direct, Stepping::Incremental] {
+        for sqrt in [Sqrt::Exact, Sqrt::Fast] {
+            let auto = trace_method(
+                &lab.scene,
+                &lab.camera,
+                Method::new(stepping, SphereTest::Auto, sqrt),
+            );
+            let fd = trace_method(
+                &lab.scene,
+                &lab.camera,
+                Method::new(stepping, SphereTest::ForwardDiff, sqrt),
+            );
+            assert!(
+                auto == fd,
+                "lab {stepping}/{sqrt}: auto differs from forward-diff"
+            );
+        }
+    }
+    // The eye inside the only sphere: Auto must fall back to the robust test.
+    let inside: Scene<1> = Scene::from_array(
+        [Sphere::new(Vec3::new(0.1, 0.2, 0.3), 2.0, Rgb888::WHITE)],
+        Rgb888::BLACK,
+    );
+    let camera = Camera::new(
+        Vec3::ZERO,
+        Vec3::new(0.0, 0.0, -1.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        1.2,
+        Size::new(64, 48),
+    )
+    .unwrap();
+    let auto = trace_method(
+        &inside,
+        &camera,
+        Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact),
+    );
+    let robust = trace_method(
+        &inside,
+        &camera,
+        Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact),
+    );
+    let fd = trace_method(
+        &inside,
+        &camera,
+        Method::new(Stepping::Direct, SphereTest::ForwardDiff, Sqrt::Exact),
+    );
+    assert!(
+        auto.iter().all(|p| p.0.is_some()),
+        "inside a sphere every ray hits it"
+    );
+    assert!(auto == robust, "eye inside: auto differs from robust");
+    // (and the fallback is observable: forward differences round differently here)
+    assert!(
+        fd != robust,
+        "forward-diff happens to equal robust: the test above proves nothing"
+    );
+}
+
+/// The default method meets the accuracy target against the robust test on every
+/// standard scene: no coverage flip, colours within one level.
+#[test]
+fn default_method_matches_robust_within_one_level() {
+    for name in SCENES {
+        let file = load(name);
+        let camera = if name == "drift" {
+            shrink(&file.camera, 480, 270)
+        } else {
+            file.camera
+        };
+        let default = trace_method(&file.scene, &camera, Method::DEFAULT);
+        let robust = trace_method(
+            &file.scene,
+            &camera,
+            Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact),
+        );
+        let (coverage, _, level) = compare(&default, &robust);
+        assert_eq!(coverage, 0, "{name}: coverage");
+        assert!(level <= 1, "{name}: {level} levels");
+    }
+}
+
+/// A clipped draw (the image placed partly off the target) gives exactly the pixels of
+/// the full render where they are visible, with culling and forward differences.
+#[test]
+fn clipped_draw_matches_the_full_render() {
+    use embedded_graphics::mock_display::MockDisplay;
+    let lab = load("lab");
+    let camera = shrink(&lab.camera, 60, 40);
+    for method in [
+        Method::DEFAULT,
+        Method::LITERAL,
+        Method::new(Stepping::Incremental, SphereTest::ForwardDiff, Sqrt::Fast),
+    ] {
+        let full = trace_method(&lab.scene, &camera, method);
+        let mut display = MockDisplay::<Rgb888>::new();
+        let offset = Point::new(-13, -7);
+        Render::new(&lab.scene, &camera)
+            .with_method(method)
+            .with_offset(offset)
+            .draw(&mut display)
+            .unwrap();
+        let mut checked = 0;
+        for (k, p) in full.iter().enumerate() {
+            let at = Point::new((k % 60) as i32, (k / 60) as i32) + offset;
+            if at.x >= 0 && at.y >= 0 && at.x < 64 && at.y < 64 {
+                // Forward differences anchor at the first visible column, so they may
+                // differ by rounding; the others must match exactly.
+                let got = display.get_pixel(at).unwrap();
+                if matches!(method.sphere_test, SphereTest::ForwardDiff | SphereTest::Auto) {
+                    let d = |a: u8, b: u8| a.abs_diff(b);
+                    assert!(
+                        d(got.r(), p.1.r())
+                            .max(d(got.g(), p.1.g()))
+                            .max(d(got.b(), p.1.b()))
+                            <= 1,
+                        "{method} at {at:?}"
+                    );
+                } else {
+                    assert_eq!(got, p.1, "{method} at {at:?}");
+                }
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 47 * 33);
+    }
+}

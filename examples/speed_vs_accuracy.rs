@@ -13,10 +13,11 @@
 //! Also the growth curve: ns/pixel against the number of spheres (the first 1 … 64 of
 //! the `crowd` scene).
 //!
-//! The reference is the `f64` ray tracer in this file (`Reference`): the seed's camera
-//! and Lab #1 shading, the robust sphere test, all in `f64` from the scene file's
-//! numbers. It stands in for the accuracy lab's reference renderer until that is on the
-//! same branch.
+//! The reference is the accuracy lab's independent `f64` renderer
+//! ([`embedded_raytracer::reference`]: the seed's camera and Lab #1 shading, the robust
+//! sphere test, all in `f64`, sharing no code with the kernel), and the metrics are its
+//! [`compare`](embedded_raytracer::reference::compare) (pixels the reference cannot
+//! decide are not counted).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -29,108 +30,12 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle as EgRect;
 use embedded_graphics::text::Text;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
+use embedded_raytracer::reference::{self, compare, ReferenceImage};
 use embedded_raytracer::{scene_file, Camera, Method, Render, Scene, SphereTest, Sqrt, Stepping};
 use plotters::prelude::*;
 
 const SCENES: [&str; 5] = ["lab", "crowd", "far", "grazing", "drift"];
 const MAX_SPHERES: usize = 64;
-
-// ---------------------------------------------------------------------------------
-// The f64 reference.
-
-type V = [f64; 3];
-fn v64(v: embedded_raytracer::Vec3) -> V {
-    [f64::from(v.x), f64::from(v.y), f64::from(v.z)]
-}
-fn dot(a: V, b: V) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn sub(a: V, b: V) -> V {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn add(a: V, b: V) -> V {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-fn mul(a: V, s: f64) -> V {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-fn cross(a: V, b: V) -> V {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn norm(a: V) -> V {
-    mul(a, 1.0 / dot(a, a).sqrt())
-}
-
-/// One reference pixel: the sphere hit (if any) and the colour.
-#[derive(Clone, Copy, PartialEq)]
-struct RefPixel {
-    hit: Option<usize>,
-    color: Rgb888,
-}
-
-/// The seed's camera, closest hit and Lab #1 shading in f64.
-fn reference<const N: usize>(scene: &Scene<N>, camera: &Camera) -> Vec<RefPixel> {
-    let p = camera.params();
-    let (eye, look, up) = (v64(p.eye), v64(p.look_at), v64(p.up));
-    let (width, height) = (f64::from(p.size.width), f64::from(p.size.height));
-    let w = norm(sub(look, eye));
-    let u = norm(cross(w, norm(up)));
-    let v = cross(u, w);
-    let ph = 2.0 * (f64::from(p.fov_y) / 2.0).tan() / height;
-    let pw = p.fov_x.map_or(ph, |fx| 2.0 * (f64::from(fx) / 2.0).tan() / width);
-    let spheres: Vec<(V, f64, Rgb888)> = scene
-        .spheres()
-        .iter()
-        .map(|s| (sub(v64(s.center), eye), f64::from(s.radius), s.color))
-        .collect();
-    let mut out = Vec::with_capacity((p.size.width * p.size.height) as usize);
-    for j in 0..p.size.height {
-        for i in 0..p.size.width {
-            let x = (f64::from(i) + 0.5 - width / 2.0) * pw;
-            let y = (height / 2.0 - (f64::from(j) + 0.5)) * ph;
-            let d = add(w, add(mul(u, x), mul(v, y)));
-            let a = dot(d, d);
-            let mut best: Option<(usize, f64)> = None;
-            for (k, &(l, r, _)) in spheres.iter().enumerate() {
-                // Robust test: perpendicular distance, stable roots.
-                let b = dot(l, d);
-                let perp = sub(l, mul(d, b / a));
-                let disc = r * r - dot(perp, perp);
-                if disc < 0.0 {
-                    continue;
-                }
-                let c = dot(l, l) - r * r;
-                let q = b + b.signum() * (a * disc).sqrt();
-                let (t0, t1) = if b >= 0.0 { (c / q, q / a) } else { (q / a, c / q) };
-                let t = if t0 > 0.0 { t0 } else { t1 };
-                if t > 0.0 && best.is_none_or(|(_, tb)| t < tb) {
-                    best = Some((k, t));
-                }
-            }
-            out.push(match best {
-                Some((k, t)) => {
-                    let (l, r, color) = spheres[k];
-                    let n_z = dot(sub(l, mul(d, t)), w) / r;
-                    let f = n_z.clamp(0.3, 1.0);
-                    let ch = |c: u8| (f64::from(c) * f + 0.5).floor() as u8;
-                    RefPixel {
-                        hit: Some(k),
-                        color: Rgb888::new(ch(color.r()), ch(color.g()), ch(color.b())),
-                    }
-                }
-                None => RefPixel {
-                    hit: None,
-                    color: scene.background(),
-                },
-            });
-        }
-    }
-    out
-}
 
 // ---------------------------------------------------------------------------------
 // Timing and errors.
@@ -212,28 +117,13 @@ fn errors<const N: usize>(
     camera: &Camera,
     method: Method,
     culling: bool,
-    reference: &[RefPixel],
+    reference: &ReferenceImage,
 ) -> (usize, u8) {
-    let mut coverage = 0;
-    let mut shade = 0u8;
-    let mut k = 0;
-    Render::<N, Rgb888>::new(scene, camera)
+    let render = Render::<N, Rgb888>::new(scene, camera)
         .with_method(method)
-        .with_span_culling(culling)
-        .trace(|s| {
-            let r = reference[k];
-            k += 1;
-            if s.hit.map(|h| h.index) != r.hit {
-                coverage += 1;
-            } else {
-                let d = |a: u8, b: u8| a.abs_diff(b);
-                shade = shade
-                    .max(d(s.color.r(), r.color.r()))
-                    .max(d(s.color.g(), r.color.g()))
-                    .max(d(s.color.b(), r.color.b()));
-            }
-        });
-    (coverage, shade)
+        .with_span_culling(culling);
+    let m = compare(&render, reference);
+    (m.coverage_errors, m.shade_max)
 }
 
 /// One point of the chart.
@@ -701,7 +591,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut cases = Vec::new();
     for (scene, file) in SCENES.iter().zip(&files) {
         let (s, c) = (&file.scene, &file.camera);
-        let reference = reference(s, c);
+        let reference = reference::render(s, c);
         let pixels = u64::from(c.size().width) * u64::from(c.size().height);
         let methods = std::iter::once((BASELINE.to_string(), None, Method::LITERAL, false))
             .chain(Method::ALL.iter().map(|m| (m.to_string(), Some(*m), *m, true)));
@@ -800,7 +690,7 @@ fn write_outputs(
     let mut md = String::new();
     writeln!(md, "# Speed against accuracy\n")?;
     writeln!(md, "Made by `{command}` on {} ({runs} timed renders per point, median; into an in-memory Rgb565 frame buffer).", machine())?;
-    writeln!(md, "Errors are against the `f64` reference render in `examples/speed_vs_accuracy.rs` (the seed's camera, robust test and Lab #1 shading in `f64`): **coverage** = pixels whose hit sphere differs from the reference's, **shade** = the largest 8-bit channel difference where the hit sphere agrees. Speed-up = baseline ns/pixel ÷ method ns/pixel, same process. The baseline is the seed taken literally: world-space stepping, the quadratic against every sphere at every pixel, libm square root, no span culling. *P* marks the Pareto front for coverage / shade: no other method is at least as accurate and more than 5 % faster (the timing noise of this shared machine), or more accurate and not slower. The chart's grey line is the strict front of the measured medians.\n")?;
+    writeln!(md, "Errors are against the accuracy lab's independent `f64` reference renderer (`embedded_raytracer::reference`: the seed's camera, robust test and Lab #1 shading in `f64`; undecidable pixels not counted): **coverage** = pixels whose hit sphere differs from the reference's, **shade** = the largest 8-bit channel difference where the hit sphere agrees. Speed-up = baseline ns/pixel ÷ method ns/pixel, same process. The baseline is the seed taken literally: world-space stepping, the quadratic against every sphere at every pixel, libm square root, no span culling. *P* marks the Pareto front for coverage / shade: no other method is at least as accurate and more than 5 % faster (the timing noise of this shared machine), or more accurate and not slower. The chart's grey line is the strict front of the measured medians.\n")?;
     writeln!(md, "![speed against accuracy](speed_vs_accuracy.png)\n")?;
     let ns_of = |scene: &str, label: &str| {
         points

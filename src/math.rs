@@ -61,8 +61,7 @@ pub fn sqrt_exact(x: f32) -> f32 {
                 options(pure, nomem, preserves_flags)
             );
         }
-        let root = f32::from_bits(root);
-        root
+        f32::from_bits(root)
     }
     #[cfg(not(all(target_arch = "arm", target_abi = "eabihf")))]
     {

@@ -495,23 +495,23 @@ impl<'a, const N: usize> Frame<'a, N> {
             SphereTest::Algebraic | SphereTest::Geometric => Margin::Quadratic,
             SphereTest::Robust | SphereTest::ForwardDiff | SphereTest::Auto => Margin::Linear,
         };
-        let spheres = scene
-            .spheres()
-            .iter()
-            .map(|s| {
-                let consts = SphereConsts::new(s, eye, w).with_row_step(
-                    camera.pixel_step(),
-                    options.anchor,
-                    camera.pixel_width(),
-                );
-                let silhouette = if options.culling {
-                    Silhouette::new(consts.l, s.radius, camera, margin, step_err)
-                } else {
-                    Silhouette::All
-                };
-                FrameSphere { consts, silhouette }
-            })
-            .collect();
+        // A push loop, not `collect()`: heapless' `FromIterator` panics on overflow, and
+        // the optimiser cannot see that a `Scene<N>` never holds more than N spheres.
+        let mut spheres = Vec::new();
+        for s in scene.spheres() {
+            let consts = SphereConsts::new(s, eye, w).with_row_step(
+                camera.pixel_step(),
+                options.anchor,
+                camera.pixel_width(),
+            );
+            let silhouette = if options.culling {
+                Silhouette::new(consts.l, s.radius, camera, margin, step_err)
+            } else {
+                Silhouette::All
+            };
+            // Never fails: the scene holds at most N spheres.
+            let _ = spheres.push(FrameSphere { consts, silhouette });
+        }
         Some(Self {
             camera,
             spheres,

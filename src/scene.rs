@@ -109,10 +109,12 @@ impl<const N: usize> Scene<N> {
             origin: Vec3,
             dir: Vec3,
         ) -> Option<Hit> {
-            let consts: Vec<SphereConsts, N> = spheres
-                .iter()
-                .map(|s| SphereConsts::new(s, origin, Vec3::ZERO))
-                .collect();
+            // A push loop, not `collect()`: heapless' `FromIterator` panics on overflow.
+            let mut consts: Vec<SphereConsts, N> = Vec::new();
+            for s in spheres {
+                // Never fails: the scene holds at most N spheres.
+                let _ = consts.push(SphereConsts::new(s, origin, Vec3::ZERO));
+            }
             closest::<T, Q>(&consts, dir, dir.dot(dir)).map(|(index, t, _)| Hit { index, t })
         }
         let s = &self.spheres;

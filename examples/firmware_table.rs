@@ -64,7 +64,8 @@ fn main() -> ExitCode {
     }
 
     println!(
-        "\nStack bytes of a render (high-water mark below the caller: stack painted before, scanned after, in an untimed second render with the SysTick interrupt off), lowest–highest over the 18 methods:\n"
+        "\nStack bytes of a render (high-water mark below the caller: stack painted before, scanned after, in an untimed second render with the SysTick interrupt off), lowest–highest over the {} methods:\n",
+        Method::ALL.len()
     );
     println!("| {} |", SCENES.join(" | "));
     println!("|{}", "---:|".repeat(SCENES.len()));

@@ -322,6 +322,7 @@ where
     type Color = C;
     type Output = ();
 
+    #[inline]
     fn draw<D>(&self, target: &mut D) -> Result<(), D::Error>
     where
         D: DrawTarget<Color = C>,
@@ -400,6 +401,12 @@ impl Options {
 }
 
 /// The once-per-frame `match` on the method, down to a monomorphised frame loop.
+///
+/// Inlined into `draw`, so that firmware whose method is a constant (the usual case:
+/// `Render::new` or `with_method(CONST)`) links only that method's loop; without it the
+/// `match` keeps every monomorphised loop alive (83 KB of `.text` instead of 20 KB,
+/// measured on `examples/no_panic.rs`).
+#[inline(always)]
 fn dispatch<const N: usize, K: RowSink>(
     scene: &Scene<N>,
     camera: &Camera,
@@ -409,6 +416,7 @@ fn dispatch<const N: usize, K: RowSink>(
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
+    #[inline(always)]
     fn with_test<const N: usize, K: RowSink, S: Stepper>(
         f: &mut Frame<'_, N>,
         method: Method,
@@ -422,6 +430,7 @@ fn dispatch<const N: usize, K: RowSink>(
             SphereTest::Auto => with_sqrt::<N, K, S, Auto>(f, method, sink),
         }
     }
+    #[inline(always)]
     fn with_sqrt<const N: usize, K: RowSink, S: Stepper, T: RowTest>(
         f: &mut Frame<'_, N>,
         method: Method,
@@ -433,12 +442,11 @@ fn dispatch<const N: usize, K: RowSink>(
         }
     }
 
-    let step_err = match method.stepping {
-        Stepping::WorldSpace => WorldSpaceStep::error_bound(camera),
-        Stepping::Incremental => IncrementalStep::error_bound(camera),
-        Stepping::Direct => DirectStep::error_bound(camera),
-    };
-    let Some(mut frame) = Frame::new(scene, camera, method, options, step_err, clip, offset) else {
+    // The per-frame sphere data lives here, in the caller, and the frame borrows it:
+    // built in place once, never moved (a by-value `Frame` holding the `Vec` was copied
+    // on return, doubling the render's stack).
+    let mut spheres = Vec::new();
+    let Some(mut frame) = Frame::new(scene, camera, method, options, clip, offset, &mut spheres) else {
         return Ok(()); // nothing visible
     };
     match method.stepping {
@@ -457,7 +465,7 @@ struct FrameSphere {
 /// Per-frame state: the visible part of the image and each sphere's constants.
 struct Frame<'a, const N: usize> {
     camera: &'a Camera,
-    spheres: Vec<FrameSphere, N>,
+    spheres: &'a [FrameSphere],
     background: Rgb888,
     /// Visible columns `i0..i1` and rows `j0..j1` of the image.
     i0: u32,
@@ -469,15 +477,14 @@ struct Frame<'a, const N: usize> {
 
 impl<'a, const N: usize> Frame<'a, N> {
     /// Clips the image (placed at `offset`) to `clip`; `None` if nothing is visible.
-    /// `step_err` bounds how far the stepping's directions are from the ideal ones.
     fn new(
         scene: &Scene<N>,
         camera: &'a Camera,
         method: Method,
         options: Options,
-        step_err: f32,
         clip: Rectangle,
         offset: Point,
+        spheres: &'a mut Vec<FrameSphere, N>,
     ) -> Option<Self> {
         let size = camera.size();
         // Clip in i64: no overflow for any offset or target size.
@@ -488,6 +495,12 @@ impl<'a, const N: usize> Frame<'a, N> {
         };
         let (i0, i1) = span(offset.x, size.width, clip.top_left.x, clip.size.width)?;
         let (j0, j1) = span(offset.y, size.height, clip.top_left.y, clip.size.height)?;
+        // How far the stepping's directions can be from the ideal ones (widens the spans).
+        let step_err = match method.stepping {
+            Stepping::WorldSpace => WorldSpaceStep::error_bound(camera),
+            Stepping::Incremental => IncrementalStep::error_bound(camera),
+            Stepping::Direct => DirectStep::error_bound(camera),
+        };
         // Per-sphere constants and silhouettes, once per frame.
         let eye = camera.eye();
         let w = camera.w();
@@ -497,7 +510,7 @@ impl<'a, const N: usize> Frame<'a, N> {
         };
         // A push loop, not `collect()`: heapless' `FromIterator` panics on overflow, and
         // the optimiser cannot see that a `Scene<N>` never holds more than N spheres.
-        let mut spheres = Vec::new();
+        spheres.clear();
         for s in scene.spheres() {
             let consts = SphereConsts::new(s, eye, w).with_row_step(
                 camera.pixel_step(),

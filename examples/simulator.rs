@@ -12,7 +12,7 @@
 //!
 //! Keys: ←/→ orbit around the look-at point (azimuth, 5° a press), ↑/↓ elevation; left
 //! mouse drag orbits too (half a turn per display width); wheel, `+`/`=` and `-` zoom;
-//! `R` resets the view; `M`/`Shift+M` next/previous method (all 18 of `Method::ALL`);
+//! `R` resets the view; `M`/`Shift+M` next/previous method (all 30 of `Method::ALL`);
 //! `D` toggles the difference view (pixels where the shown frame differs from the
 //! `direct/robust/exact` render through the same display model, in magenta); `Tab`/
 //! `Shift+Tab` or `1`–`9` pick the display model; `B` switches the Bayer matrix 8×8/4×4;
@@ -854,7 +854,11 @@ mod tests {
             seen.push(app.view.method);
             app.handle(key(Keycode::M));
         }
-        assert_eq!(app.view.method, Method::DEFAULT, "back to the start after 18");
+        assert_eq!(
+            app.view.method,
+            Method::DEFAULT,
+            "back to the start after a full cycle"
+        );
         assert!(Method::ALL.iter().all(|m| seen.contains(m)));
         let mut models = Vec::new();
         for _ in 0..Model::ALL.len() {

@@ -18,6 +18,11 @@ use embedded_graphics::prelude::*;
 /// let mut b = PixelHash::new(Size::new(2, 1));
 /// b.fill_contiguous(&a.bounding_box(), [Rgb888::RED, Rgb888::BLUE]).unwrap();
 /// assert_eq!((a.hash(), a.pixels()), (b.hash(), 2));
+///
+/// // Filled shapes and `clear` hash exactly the pixels they cover.
+/// let mut c = PixelHash::new(Size::new(4, 3));
+/// c.clear(Rgb888::BLACK).unwrap();
+/// assert_eq!(c.pixels(), 12);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PixelHash {
@@ -78,10 +83,13 @@ impl DrawTarget for PixelHash {
 
     fn fill_contiguous<I: IntoIterator<Item = Rgb888>>(
         &mut self,
-        _area: &embedded_graphics::primitives::Rectangle,
+        area: &embedded_graphics::primitives::Rectangle,
         colors: I,
     ) -> Result<(), Self::Error> {
-        colors.into_iter().for_each(|c| self.add(c));
+        // Exactly the area's pixels: `fill_solid` and `clear` pass an endless
+        // `repeat(colour)` here.
+        let n = u64::from(area.size.width) * u64::from(area.size.height);
+        colors.into_iter().take(n as usize).for_each(|c| self.add(c));
         Ok(())
     }
 }

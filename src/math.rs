@@ -1,12 +1,14 @@
 //! Square-root and tangent back ends.
 //!
-//! The kernel needs three scalar functions: a square root in the per-pixel loop (only
-//! where a ray hits), and [`tan`] (its own, for flash; see there) and an exact square
-//! root once per frame (camera setup). Two square roots are offered, one per [`Sqrt`](crate::Sqrt) method:
+//! The kernel needs three scalar functions: a square root (per pixel where a ray hits,
+//! per row and per frame for the span culling and the sphere constants), and [`tan`]
+//! (its own, for flash; see there) once per frame for the camera. Two square roots are
+//! offered, one per [`Sqrt`](crate::Sqrt) method:
 //!
 //! | function | source | error bound |
 //! |---|---|---|
 //! | [`sqrt_exact`] | the FPU's `VSQRT.F32` on hard-float ARM (`target_abi = "eabihf"`, e.g. `thumbv7em-none-eabihf`), `libm::sqrtf` elsewhere | correctly rounded (≤ 0.5 ulp) |
+//! | [`sqrt_fast`] | micromath's bit trick `(bits + 0x3f80_0000) >> 1` | `0 ≤ (fast − exact)/exact ≤ 6.07 %` for finite `x ≥ 0`; exact at powers of 4 |
 //!
 //! Why the instruction: on `thumbv7em-none-eabihf` libm 0.2's `sqrtf` is a software
 //! routine (its `arch` feature only has SSE2, AArch64 and wasm back ends; disassembled,
@@ -14,7 +16,6 @@
 //! Cortex-M4F's FPU computes the same correctly rounded result in 14 cycles. Both are
 //! IEEE-754 `squareRoot` in round-to-nearest, so the results are bit-identical
 //! ([`sqrt_exact_matches_libm`] checks it, on the host and in firmware).
-//! | [`sqrt_fast`] | micromath's bit trick `(bits + 0x3f80_0000) >> 1` | `0 ≤ (fast − exact)/exact ≤ 6.07 %` for finite `x ≥ 0`; exact at powers of 4 |
 
 /// Correctly rounded `f32` square root (IEEE-754 `sqrt`, ≤ 0.5 ulp).
 ///
@@ -47,8 +48,8 @@ pub fn sqrt_exact(x: f32) -> f32 {
         // block restores itself). Every hard-float ARM target (`eabihf`) has a VFP unit
         // (VFPv2 or later, all of which implement VSQRT.F32) and enables it before
         // `main` (cortex-m-rt does so for `thumbv7em-none-eabihf`), so the instruction
-        // exists and is enabled. No flags are changed (the FPSCR's cumulative exception
-        // bits are not the condition flags).
+        // exists and is enabled. It may set the FPSCR's cumulative exception bits (IXC,
+        // IOC), so the block does not claim `preserves_flags`.
         unsafe {
             core::arch::asm!(
                 "vpush {{s14}}",
@@ -58,7 +59,7 @@ pub fn sqrt_exact(x: f32) -> f32 {
                 "vpop {{s14}}",
                 x = in(reg) x.to_bits(),
                 root = lateout(reg) root,
-                options(pure, nomem, preserves_flags)
+                options(pure, nomem)
             );
         }
         f32::from_bits(root)

@@ -104,54 +104,37 @@ impl<const N: usize> Scene<N> {
     /// ```
     #[must_use]
     pub fn closest_hit(&self, origin: Vec3, dir: Vec3, test: SphereTest, sqrt: Sqrt) -> Option<Hit> {
-        fn search<T: HitTest, Q: SqrtFn, const N: usize>(
-            spheres: &[Sphere],
-            origin: Vec3,
-            dir: Vec3,
-        ) -> Option<Hit> {
-            // A push loop, not `collect()`: heapless' `FromIterator` panics on overflow.
-            let mut consts: Vec<SphereConsts, N> = Vec::new();
-            for s in spheres {
-                // Never fails: the scene holds at most N spheres.
-                let _ = consts.push(SphereConsts::new(s, origin, Vec3::ZERO));
+        // Closest hit: each test gets the nearest `t` found so far as its `t_max`, so a
+        // farther sphere is rejected by the same comparison that finds hits. Constants
+        // are made per sphere as it is tested (no per-query buffer on the stack).
+        fn search<T: HitTest, Q: SqrtFn>(spheres: &[Sphere], origin: Vec3, dir: Vec3) -> Option<Hit> {
+            let a = dir.dot(dir);
+            let mut t_max = f32::INFINITY;
+            let mut best = None;
+            for (index, sphere) in spheres.iter().enumerate() {
+                let s = SphereConsts::new(sphere, origin, Vec3::ZERO);
+                if let Some(t) = T::hit::<Q>(&s, dir, a, t_max) {
+                    t_max = t;
+                    best = Some(Hit { index, t });
+                }
             }
-            closest::<T, Q>(&consts, dir, dir.dot(dir)).map(|(index, t, _)| Hit { index, t })
+            best
         }
         let s = &self.spheres;
         match (test, sqrt) {
-            (SphereTest::Algebraic, Sqrt::Exact) => search::<Algebraic, ExactSqrt, N>(s, origin, dir),
-            (SphereTest::Algebraic, Sqrt::Fast) => search::<Algebraic, FastSqrt, N>(s, origin, dir),
-            (SphereTest::Geometric, Sqrt::Exact) => search::<Geometric, ExactSqrt, N>(s, origin, dir),
-            (SphereTest::Geometric, Sqrt::Fast) => search::<Geometric, FastSqrt, N>(s, origin, dir),
-            (SphereTest::Robust, Sqrt::Exact) => search::<Robust, ExactSqrt, N>(s, origin, dir),
-            (SphereTest::Robust, Sqrt::Fast) => search::<Robust, FastSqrt, N>(s, origin, dir),
+            (SphereTest::Algebraic, Sqrt::Exact) => search::<Algebraic, ExactSqrt>(s, origin, dir),
+            (SphereTest::Algebraic, Sqrt::Fast) => search::<Algebraic, FastSqrt>(s, origin, dir),
+            (SphereTest::Geometric, Sqrt::Exact) => search::<Geometric, ExactSqrt>(s, origin, dir),
+            (SphereTest::Geometric, Sqrt::Fast) => search::<Geometric, FastSqrt>(s, origin, dir),
+            (SphereTest::Robust, Sqrt::Exact) => search::<Robust, ExactSqrt>(s, origin, dir),
+            (SphereTest::Robust, Sqrt::Fast) => search::<Robust, FastSqrt>(s, origin, dir),
             // One ray: the forward-differenced test at an anchor (direct evaluation).
             (SphereTest::ForwardDiff | SphereTest::Auto, Sqrt::Exact) => {
-                search::<ForwardDiff, ExactSqrt, N>(s, origin, dir)
+                search::<ForwardDiff, ExactSqrt>(s, origin, dir)
             }
             (SphereTest::ForwardDiff | SphereTest::Auto, Sqrt::Fast) => {
-                search::<ForwardDiff, FastSqrt, N>(s, origin, dir)
+                search::<ForwardDiff, FastSqrt>(s, origin, dir)
             }
         }
     }
-}
-
-/// Closest hit over `spheres`: each test is given the nearest `t` found so far as its
-/// `t_max`, so a farther sphere is rejected by the same comparison that finds hits.
-/// Returns the index, `t` and the sphere's constants.
-#[inline(always)]
-pub(crate) fn closest<T: HitTest, Q: SqrtFn>(
-    spheres: &[SphereConsts],
-    d: Vec3,
-    a: f32,
-) -> Option<(usize, f32, &SphereConsts)> {
-    let mut t_max = f32::INFINITY;
-    let mut best = None;
-    for (index, s) in spheres.iter().enumerate() {
-        if let Some(t) = T::hit::<Q>(s, d, a, t_max) {
-            t_max = t;
-            best = Some((index, t, s));
-        }
-    }
-    best
 }

@@ -155,7 +155,8 @@ pub fn parse<const N: usize>(text: &str) -> Result<SceneFile<N>, SceneFileError>
     if let Some(fov_x) = c.fov_x_deg {
         params = params.with_fov_x(fov_x.to_radians());
     }
-    let camera = Camera::from_params(params).map_err(|e| SceneFileError::field(camera_field(e), e))?;
+    let camera =
+        Camera::from_params(params).map_err(|e| SceneFileError::field(camera_field(e, c.width), e))?;
 
     let mut scene = Scene::new(rgb(raw.background));
     if raw.sphere.len() > N {
@@ -197,9 +198,12 @@ pub fn load<const N: usize>(path: impl AsRef<Path>) -> Result<SceneFile<N>, Scen
     parse(&text).map_err(with_path)
 }
 
-/// The scene-file key of a camera error, as `camera.<key>`.
-fn camera_field(e: CameraError) -> String {
+/// The scene-file key of a camera error, as `camera.<key>`; a resolution error names
+/// the dimension that is out of range.
+fn camera_field(e: CameraError, width: u32) -> String {
+    let width_ok = (1..=crate::camera::MAX_RESOLUTION).contains(&width);
     let key = match e {
+        CameraError::ZeroResolution | CameraError::ResolutionTooLarge if width_ok => "height",
         CameraError::ZeroResolution | CameraError::ResolutionTooLarge => "width",
         _ => e.file_key(),
     };
@@ -294,6 +298,8 @@ color = [255, 64, 64]
         assert_eq!(e.field.as_deref(), Some("camera.up"));
 
         let e = err(&GOOD.replace("height = 24", "height = 0"));
+        assert_eq!(e.field.as_deref(), Some("camera.height"));
+        let e = err(&GOOD.replace("width = 32", "width = 9000"));
         assert_eq!(e.field.as_deref(), Some("camera.width"));
 
         let e = err("this is [not toml");

@@ -104,9 +104,10 @@ impl Sphere {
     /// `(−b ± √disc)/2a`.
     ///
     /// **Fails** for a sphere far away relative to its size: `b²` and `4ac` are both
-    /// ≈ `4a|L|²` and their difference `4a(r² − dist²)` cancels catastrophically. Edge
-    /// pixels start to flip from distance/radius ≈ 100; beyond ≈ 4096 the f32 rounding
-    /// of `|L|²` swamps `r²` and the disc is all-or-nothing. `−b − √disc` also cancels
+    /// ≈ `4a|L|²` and their difference `4a(r² − dist²)` cancels catastrophically.
+    /// Measured by the accuracy lab (`tests/stability.rs`): no error up to
+    /// distance/radius 100, edge pixels flip from 178, half the disc is wrong at 3162,
+    /// and from 17783 the f32 rounding of `|L|²` swamps `r²` and every ray is a hit. `−b − √disc` also cancels
     /// for the near root when the eye is close to the surface.
     #[must_use]
     pub fn intersect_algebraic(&self, origin: Vec3, dir: Vec3) -> Option<f32> {
@@ -117,7 +118,7 @@ impl Sphere {
     /// `d² > r²`, `t_hc = √(r² − d²)`, distance `t_ca ∓ t_hc`.
     ///
     /// **Fails** the same way as the algebraic form for far, small spheres: `|L|² − t_ca²`
-    /// cancels catastrophically (edge pixels from distance/radius ≈ 100). It also
+    /// cancels catastrophically (measured: edge pixels from distance/radius 178). It also
     /// normalises the ray with the square root, so with [`Sqrt::Fast`] (up to 6 % off)
     /// `t_ca` and hence `d²` are wrong and coverage fails everywhere.
     #[must_use]
@@ -130,7 +131,8 @@ impl Sphere {
     /// cancellation between two large squares, and the stable roots `q = b + sign(b)·√(a·disc)`,
     /// `t = c/q` and `t = q/a` (no `−b + √…` cancellation).
     ///
-    /// Holds to distance/radius ≥ 1e5 in f32. Remaining failure: when `b = 0` and the
+    /// Measured with zero coverage errors up to distance/radius 1e5 in f32 (the largest
+    /// the sweep reaches). Remaining failure: when `b = 0` and the
     /// discriminant is exactly 0 (eye exactly on the surface, ray tangent) `q = 0` and
     /// the ray is reported as a miss.
     #[must_use]
@@ -229,13 +231,16 @@ impl SphereConsts {
 /// pixel and are as well conditioned as the robust test (perpendicular distance via
 /// `L × d`, no `|L|² − t²` cancellation), so no slides' test is cheaper *and*
 /// sufficient: the algebraic and geometric tests cost a dot product and more per pixel
-/// and fail from distance/radius ≈ 100.
+/// and fail from distance/radius 178 (measured).
 #[must_use]
 pub(crate) fn auto_uses_forward_diff(c: f32, r2: f32, pw: f32, k: u32) -> bool {
     if !(c > 0.0) {
         return false;
     }
-    // Radius on screen in pixels (tangent-cone half-angle over the pixel angle).
+    // Radius on screen in pixels (tangent-cone half-angle over the pixel angle at the
+    // image centre). Assumption: off-axis in a wide field of view a sphere covers up to
+    // 1/cos²θ more pixels than this, so there the 1/16 px promise holds only for the
+    // centre-equivalent radius (not yet taken from the frame's ellipse).
     let r_px = crate::math::sqrt_exact(r2 / c) / pw;
     let k = k as f32;
     FD_EDGE_SCALE * k * (r_px + 2.0 * k) <= 1.0 / 16.0

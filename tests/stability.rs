@@ -92,7 +92,7 @@ fn distance_sweep_pins_each_sphere_test() {
     );
 }
 
-/// The same sweep at 256×256 for all 18 methods: the stepping adds nothing here
+/// The same sweep at 256×256 for every method of `Method::ALL`: the stepping adds nothing here
 /// (axis-aligned camera at the origin), so every stepping fails where Direct does.
 #[test]
 #[ignore = "exhaustive: cargo test --release --test stability -- --ignored"]

@@ -18,11 +18,6 @@ use embedded_graphics::prelude::*;
 /// let mut b = PixelHash::new(Size::new(2, 1));
 /// b.fill_contiguous(&a.bounding_box(), [Rgb888::RED, Rgb888::BLUE]).unwrap();
 /// assert_eq!((a.hash(), a.pixels()), (b.hash(), 2));
-///
-/// // Filled shapes and `clear` hash exactly the pixels they cover.
-/// let mut c = PixelHash::new(Size::new(4, 3));
-/// c.clear(Rgb888::BLACK).unwrap();
-/// assert_eq!(c.pixels(), 12);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PixelHash {
@@ -81,15 +76,32 @@ impl DrawTarget for PixelHash {
         Ok(())
     }
 
+    /// Hashes every colour the iterator yields. A render yields exactly the area's
+    /// pixels; the trait would let a sink ignore any excess, but bounding the loop here
+    /// (with `take` or a counter) made the QEMU-measured cost of a render ~15
+    /// instructions per pixel higher by breaking up the render's row loop, and this
+    /// target exists to measure that loop.
     fn fill_contiguous<I: IntoIterator<Item = Rgb888>>(
         &mut self,
-        area: &embedded_graphics::primitives::Rectangle,
+        _area: &embedded_graphics::primitives::Rectangle,
         colors: I,
     ) -> Result<(), Self::Error> {
-        // Exactly the area's pixels: `fill_solid` and `clear` pass an endless
-        // `repeat(colour)` here.
+        colors.into_iter().for_each(|c| self.add(c));
+        Ok(())
+    }
+
+    /// The trait's default passes an endless `repeat(color)` to `fill_contiguous`,
+    /// which would never return here: hash the area's pixels directly (`clear` comes
+    /// through here too).
+    fn fill_solid(
+        &mut self,
+        area: &embedded_graphics::primitives::Rectangle,
+        color: Rgb888,
+    ) -> Result<(), Self::Error> {
         let n = u64::from(area.size.width) * u64::from(area.size.height);
-        colors.into_iter().take(n as usize).for_each(|c| self.add(c));
+        for _ in 0..n {
+            self.add(color);
+        }
         Ok(())
     }
 }

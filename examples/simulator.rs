@@ -876,7 +876,11 @@ mod tests {
         // The reference method against itself: nothing differs.
         let mut app = App::new(&args(
             "scenes/lab.toml",
-            &[&small[..], &["--stepping", "direct", "--diff"]].concat(),
+            &[
+                &small[..],
+                &["--stepping", "direct", "--sphere-test", "robust", "--diff"],
+            ]
+            .concat(),
         ))
         .unwrap();
         app.redraw();

@@ -37,9 +37,17 @@ pub(crate) fn channels(color: Rgb888) -> [f32; 3] {
 /// [`lab1`] on pre-converted channels: bit-identical (the u8 → f32 conversion is exact).
 #[inline(always)]
 pub(crate) fn lab1_channels(c: [f32; 3], n_z: f32) -> Rgb888 {
-    // max/min (not clamp) so a NaN picks the bound instead of propagating.
-    #[allow(clippy::manual_clamp)]
-    let k = n_z.max(AMBIENT).min(1.0);
+    // Clamp with comparisons, not `max`/`min` (on a Cortex-M4 those are calls to
+    // libm's `fmaxf`/`fminf`, ~30 instructions per hit pixel) nor `clamp` (NaN would
+    // propagate): a NaN fails both tests and takes the 0.3 floor, exactly as
+    // `n_z.max(0.3).min(1.0)` did.
+    let k = if n_z > 1.0 {
+        1.0
+    } else if n_z >= AMBIENT {
+        n_z
+    } else {
+        AMBIENT
+    };
     let [r, g, b] = c;
     Rgb888::new(scale(r, k), scale(g, k), scale(b, k))
 }
@@ -71,5 +79,35 @@ mod tests {
         assert_eq!(lab1(Rgb888::new(10, 0, 1), 0.44), Rgb888::new(4, 0, 0));
         // 200 × 0.75 = 150 exactly
         assert_eq!(lab1(Rgb888::new(200, 0, 0), 0.75), Rgb888::new(150, 0, 0));
+    }
+
+    /// The comparison clamp is bit-for-bit `n_z.max(0.3).min(1.0)` for every `f32` in
+    /// a sweep across its whole range, both zeros, the infinities and NaN.
+    #[test]
+    fn comparison_clamp_equals_max_min() {
+        let c = Rgb888::new(255, 128, 7);
+        let check = |n: f32| {
+            // The previous formulation, kept as the oracle (NaN → 0.3, unlike clamp).
+            #[allow(clippy::manual_clamp)]
+            let k = n.max(AMBIENT).min(1.0);
+            let expected = Rgb888::new(scale(255.0, k), scale(128.0, k), scale(7.0, k));
+            assert_eq!(lab1(c, n), expected, "n_z = {n:e}");
+        };
+        for special in [
+            0.0,
+            -0.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            AMBIENT,
+            1.0,
+        ] {
+            check(special);
+        }
+        let mut bits = 0u32;
+        while let Some(next) = bits.checked_add(65_537) {
+            check(f32::from_bits(bits));
+            bits = next;
+        }
     }
 }

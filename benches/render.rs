@@ -13,61 +13,19 @@
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;
-use std::convert::Infallible;
 use std::time::{Duration, Instant};
 
 use criterion::{BenchmarkId, Criterion, Throughput};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use embedded_graphics::primitives::Rectangle;
 use embedded_raytracer::{scene_file, Method, Render};
 
 const SCENES: [&str; 5] = ["lab", "crowd", "far", "grazing", "drift"];
 const BASELINE: &str = "baseline";
 
-/// A plain slice-backed Rgb565 frame buffer: what a firmware's DMA buffer looks like.
-struct SliceTarget<'a> {
-    buf: &'a mut [Rgb565],
-    size: Size,
-}
-
-impl OriginDimensions for SliceTarget<'_> {
-    fn size(&self) -> Size {
-        self.size
-    }
-}
-
-impl DrawTarget for SliceTarget<'_> {
-    type Color = Rgb565;
-    type Error = Infallible;
-
-    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, pixels: I) -> Result<(), Infallible> {
-        let (w, h) = (self.size.width as i32, self.size.height as i32);
-        for Pixel(p, c) in pixels {
-            if (0..w).contains(&p.x) && (0..h).contains(&p.y) {
-                if let Some(px) = self.buf.get_mut((p.y * w + p.x) as usize) {
-                    *px = c;
-                }
-            }
-        }
-        Ok(())
-    }
-
-    /// Rows arrive as one `fill_contiguous` each: copy them straight in (the render
-    /// only sends rows already clipped to the target).
-    fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
-        &mut self,
-        area: &Rectangle,
-        colors: I,
-    ) -> Result<(), Infallible> {
-        let start = (area.top_left.y as usize) * self.size.width as usize + area.top_left.x as usize;
-        let n = (area.size.width * area.size.height) as usize;
-        for (px, c) in self.buf[start..start + n].iter_mut().zip(colors) {
-            *px = c;
-        }
-        Ok(())
-    }
-}
+#[path = "../examples/common/slice_target.rs"]
+mod slice_target;
+use slice_target::SliceTarget;
 
 thread_local! {
     /// Per benchmark id: ns/pixel of every timed call (one criterion sample or warm-up).

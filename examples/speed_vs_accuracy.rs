@@ -27,7 +27,6 @@ use std::time::Instant;
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
-use embedded_graphics::primitives::Rectangle as EgRect;
 use embedded_graphics::text::Text;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use embedded_raytracer::reference::{self, compare, ReferenceImage};
@@ -40,48 +39,9 @@ const MAX_SPHERES: usize = 64;
 // ---------------------------------------------------------------------------------
 // Timing and errors.
 
-/// A slice-backed Rgb565 frame buffer (as in `benches/render.rs`).
-struct SliceTarget<'a> {
-    buf: &'a mut [Rgb565],
-    size: Size,
-}
-
-impl OriginDimensions for SliceTarget<'_> {
-    fn size(&self) -> Size {
-        self.size
-    }
-}
-
-impl DrawTarget for SliceTarget<'_> {
-    type Color = Rgb565;
-    type Error = std::convert::Infallible;
-
-    fn draw_iter<I: IntoIterator<Item = embedded_graphics::Pixel<Rgb565>>>(
-        &mut self,
-        pixels: I,
-    ) -> Result<(), Self::Error> {
-        let w = self.size.width as i32;
-        for embedded_graphics::Pixel(p, c) in pixels {
-            if let Some(px) = self.buf.get_mut((p.y * w + p.x) as usize) {
-                *px = c;
-            }
-        }
-        Ok(())
-    }
-
-    fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
-        &mut self,
-        area: &EgRect,
-        colors: I,
-    ) -> Result<(), Self::Error> {
-        let start = (area.top_left.y as usize) * self.size.width as usize + area.top_left.x as usize;
-        let n = (area.size.width * area.size.height) as usize;
-        for (px, c) in self.buf[start..start + n].iter_mut().zip(colors) {
-            *px = c;
-        }
-        Ok(())
-    }
-}
+#[path = "common/slice_target.rs"]
+mod slice_target;
+use slice_target::SliceTarget;
 
 /// Median ns/pixel over `runs` renders.
 fn time_render<const N: usize>(

@@ -320,16 +320,22 @@ impl HitTest for Robust {
         if disc < 0.0 {
             return None;
         }
-        // Stable roots: q has the sign of b, so b + sign(b)·√… never cancels.
-        let root = Q::sqrt(a * disc);
-        let q = if b >= 0.0 { b + root } else { b - root };
-        let (t_near, t_far) = if b >= 0.0 {
-            (s.c / q, q / a)
-        } else {
-            (q / a, s.c / q)
-        };
-        nearest(t_near, t_far, t_max)
+        stable_roots(s, b, Q::sqrt(a * disc), a, t_max)
     }
+}
+
+/// The nearer of the stable roots of `a t² − 2b t + c = 0` given `root = √(b² − ac)`:
+/// `q = b + sign(b)·root` has no `b − root` cancellation, and the roots are `c/q` and
+/// `q/a` (Haines et al.). Shared by the robust and the forward-differenced tests.
+#[inline(always)]
+fn stable_roots(s: &SphereConsts, b: f32, root: f32, a: f32, t_max: f32) -> Option<f32> {
+    let q = if b >= 0.0 { b + root } else { b - root };
+    let (t_near, t_far) = if b >= 0.0 {
+        (s.c / q, q / a)
+    } else {
+        (q / a, s.c / q)
+    };
+    nearest(t_near, t_far, t_max)
 }
 
 /// A sphere test as the row loop sees it: it may keep per-row state for each sphere
@@ -434,14 +440,7 @@ impl ForwardDiff {
         if disc < 0.0 {
             return None;
         }
-        let root = Q::sqrt(disc);
-        let q = if b >= 0.0 { b + root } else { b - root };
-        let (t_near, t_far) = if b >= 0.0 {
-            (s.c / q, q / a)
-        } else {
-            (q / a, s.c / q)
-        };
-        nearest(t_near, t_far, t_max)
+        stable_roots(s, b, Q::sqrt(disc), a, t_max)
     }
 }
 

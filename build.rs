@@ -1,6 +1,16 @@
 //! Build glue: the `host_std` cfg (feature `std` on a target with an OS), and for
-//! bare-metal ARM the firmware examples' memory map (`memory.x`, read by
-//! cortex-m-rt's `link.x`).
+//! bare-metal targets the firmware examples' memory map, written to `OUT_DIR` as
+//! `memory.x` (the runtime's `link.x` includes it):
+//!
+//! | target | memory map | machine |
+//! |---|---|---|
+//! | hard-float ARM (`thumbv7em-none-eabihf`) | `memory-stm32f4.x` | STM32F405/407, QEMU `netduinoplus2` |
+//! | other ARM (`thumbv6m-none-eabi`) | `memory-nrf51.x` | nRF51, QEMU `microbit` |
+//! | RV32 (`riscv32imc-unknown-none-elf`) | `memory-rv32-virt.x` | QEMU `virt` |
+//!
+//! No file in the package root may be called `memory.x`: the linker runs there and
+//! looks for an `INCLUDE`d script in its working directory before the search path, so
+//! a root `memory.x` would be every target's map.
 use std::env;
 use std::path::PathBuf;
 
@@ -9,17 +19,26 @@ fn main() {
     let std = env::var_os("CARGO_FEATURE_STD").is_some();
     let target_os = env::var("CARGO_CFG_TARGET_OS").unwrap_or_default();
     let target_arch = env::var("CARGO_CFG_TARGET_ARCH").unwrap_or_default();
+    let target_abi = env::var("CARGO_CFG_TARGET_ABI").unwrap_or_default();
     let bare_metal = target_os == "none";
     if std && !bare_metal {
         println!("cargo::rustc-cfg=host_std");
     }
-    // Firmware examples (thumbv7em-none-eabihf): put memory.x on the linker search
-    // path, where `-Tlink.x` (.cargo/config.toml) finds it through `INCLUDE memory.x`.
-    if bare_metal && target_arch == "arm" {
+    // The same split as the firmware dev-dependencies in Cargo.toml.
+    let memory: Option<&[u8]> = match (bare_metal, target_arch.as_str(), target_abi.as_str()) {
+        (true, "arm", "eabihf") => Some(include_bytes!("memory-stm32f4.x")),
+        (true, "arm", _) => Some(include_bytes!("memory-nrf51.x")),
+        (true, "riscv32", _) => Some(include_bytes!("memory-rv32-virt.x")),
+        _ => None,
+    };
+    // On the linker search path, where `-Tlink.x` (.cargo/config.toml) finds it through
+    // `INCLUDE memory.x`.
+    if let Some(memory) = memory {
         let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-        std::fs::write(out.join("memory.x"), include_bytes!("memory.x")).expect("write memory.x to OUT_DIR");
+        std::fs::write(out.join("memory.x"), memory).expect("write memory.x to OUT_DIR");
         println!("cargo::rustc-link-search={}", out.display());
     }
-    println!("cargo::rerun-if-changed=memory.x");
-    println!("cargo::rerun-if-changed=build.rs");
+    for file in ["memory-stm32f4.x", "memory-nrf51.x", "memory-rv32-virt.x", "build.rs"] {
+        println!("cargo::rerun-if-changed={file}");
+    }
 }

@@ -1,0 +1,308 @@
+//! The measurement every QEMU firmware example runs (`qemu_cortex_m4`, `qemu_cortex_m0`,
+//! `qemu_rv32`): a platform supplies an instruction counter, a stack painter and an
+//! output channel ([`Platform`]); this module renders every standard scene with every
+//! method of `Method::ALL` into a [`PixelHash`] at 240×240 and prints one line per scene
+//! and method in the format `examples/common/qemu_output.rs` parses:
+//!
+//! ```text
+//! hash lab incremental/robust/exact 0x0123456789abcdef pixels 57600 instr 3456789 ipp 60.0 stack 312
+//! ```
+//!
+//! - `instr`: instructions executed by the render, from the platform's counter minus
+//!   the cost of reading it twice. Each run first checks the counter on loops of known
+//!   length (`calibration` lines).
+//! - `stack`: bytes of stack below the caller's stack pointer that the render touched
+//!   (the stack is painted before and scanned after), measured in a second, untimed
+//!   render with the counter's interrupt (if any) off, so no exception frame lands on
+//!   the stack. Reaching the bottom of the stack region is a failure (an overflow).
+//!
+//! Included with `#[path]`; `crate::scenes` must be `examples/common/scenes.rs`.
+
+#![allow(dead_code)]
+
+use core::fmt;
+
+use embedded_graphics::pixelcolor::Rgb888;
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use embedded_raytracer::{hash::PixelHash, math, Camera, CameraParams, Method, Render, Scene};
+
+use crate::scenes;
+
+/// Every scene is rendered at this size (its own camera otherwise).
+pub const SIZE: Size = Size::new(240, 240);
+/// Stack paint pattern.
+pub const PAINT: u32 = 0xDEAD_BEEF;
+
+/// What a chip (or its emulator) provides for the measurement.
+pub trait Platform {
+    /// The firmware's name, the first word of its output.
+    fn name(&self) -> &'static str;
+    /// The instruction counter's current value, in its own ticks.
+    fn ticks(&self) -> u64;
+    /// Ticks to instructions, rounded to nearest.
+    fn instructions(&self, ticks: u64) -> u64;
+    /// Instructions per tick, rounded up: the counter's resolution.
+    fn instructions_per_tick(&self) -> u64;
+    /// Prints how the counter becomes instructions (the `clock` or `counter` line).
+    fn describe_counter(&self, overhead_ticks: u64);
+    /// Executes exactly `2n` instructions, `n ≥ 1`, touching no memory.
+    fn spin(&self, n: u32);
+    /// The stack pointer.
+    fn sp(&self) -> usize;
+    /// Paints every word in `[stack bottom, SP)` with [`PAINT`], writing nothing at or
+    /// above the stack pointer and using no stack itself.
+    fn paint_stack(&self);
+    /// The stack region: `(lowest address it may reach, initial stack pointer)`.
+    fn stack_region(&self) -> (usize, usize);
+    /// Turns the counter's interrupt off (`true`) or back on (`false`).
+    fn quiet(&mut self, quiet: bool);
+    /// Prints one line.
+    fn print(&self, args: fmt::Arguments);
+    /// Ends the run with QEMU's exit status 0 (`ok`) or 1.
+    fn exit(&self, ok: bool) -> !;
+}
+
+/// The render under test, never inlined so that its whole frame lies below the
+/// measuring function's stack pointer.
+#[inline(never)]
+fn render<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, target: &mut PixelHash) {
+    let Ok(()) = Render::new(scene, camera).with_method(method).draw(target);
+}
+
+/// The sink alone, for scale: the same `PixelHash` fed 240 rows of 240 pixels through
+/// `fill_contiguous`, one call per row as a render makes them, with colours that cost
+/// one add each. A render's instructions minus these are the kernel's.
+#[inline(never)]
+fn sink_only(target: &mut PixelHash) {
+    for y in 0..SIZE.height {
+        let row = Rectangle::new(Point::new(0, y as i32), Size::new(SIZE.width, 1));
+        let colors = (0..SIZE.width).map(|x| Rgb888::new(x as u8, y as u8, (x ^ y) as u8));
+        let Ok(()) = target.fill_contiguous(&row, colors);
+    }
+}
+
+/// Instructions executed by `f` (minus the measurement's own `overhead` ticks).
+#[inline(never)]
+fn timed<P: Platform>(platform: &P, overhead: u64, f: impl FnOnce()) -> u64 {
+    let t0 = platform.ticks();
+    f();
+    let t1 = platform.ticks();
+    platform.instructions((t1 - t0).saturating_sub(overhead))
+}
+
+/// Peak stack bytes `f` uses below this function's stack pointer, or `None` if it
+/// reached the bottom of the stack region.
+#[inline(never)]
+fn stack_of<P: Platform>(platform: &P, f: impl FnOnce()) -> Option<usize> {
+    let (bottom, top) = platform.stack_region();
+    let base = top - platform.sp();
+    platform.paint_stack();
+    f();
+    // The first word above the bottom that no longer holds the paint.
+    let mut p = bottom;
+    // SAFETY: reads words of the stack region, all below the initial SP.
+    while p < top && unsafe { core::ptr::read_volatile(p as *const u32) } == PAINT {
+        p += 4;
+    }
+    (p > bottom).then(|| (top - p).saturating_sub(base))
+}
+
+/// Instructions per pixel, tenths rounded to nearest.
+fn ipp10(instructions: u64, pixels: u64) -> u64 {
+    (instructions * 10 + pixels / 2) / pixels.max(1)
+}
+
+/// One firmware run: its platform, the counter's own cost and the failures so far.
+pub struct Run<P: Platform> {
+    pub platform: P,
+    /// Ticks of an empty `timed` measurement.
+    overhead: u64,
+    failures: u32,
+}
+
+impl<P: Platform> Run<P> {
+    /// Measures the counter's overhead and prints the run's header lines.
+    pub fn start(platform: P) -> Self {
+        let overhead = {
+            let t0 = platform.ticks();
+            let t1 = platform.ticks();
+            t1 - t0
+        };
+        platform.print(format_args!(
+            "{}: every standard scene at {}x{} (its own camera, size replaced), every method",
+            platform.name(),
+            SIZE.width,
+            SIZE.height
+        ));
+        platform.describe_counter(overhead);
+        // The default method's name, so tools can pick its lines (e.g. no_panic's hash).
+        platform.print(format_args!("default {}", Method::DEFAULT));
+        Run {
+            platform,
+            overhead,
+            failures: 0,
+        }
+    }
+
+    fn fail(&mut self, what: &str) {
+        self.platform.print(format_args!("FAIL {}", what));
+        self.failures += 1;
+    }
+
+    /// Instructions executed by `f`, measured like a render.
+    pub fn timed(&self, f: impl FnOnce()) -> u64 {
+        timed(&self.platform, self.overhead, f)
+    }
+
+    /// Checks the tick-to-instruction conversion on a loop of `2n` instructions:
+    /// within 0.001 % + 20 instructions, or two ticks where a tick is coarser than 10
+    /// instructions (each wrap of a 24-bit SysTick also costs its exception, ~12).
+    pub fn calibrate(&mut self, n: u32) {
+        // SAFETY: a plain read, to keep the loop count opaque to the optimiser.
+        let n = unsafe { core::ptr::read_volatile(&n) };
+        let expected = 2 * u64::from(n);
+        let measured = self.timed(|| self.platform.spin(n));
+        let tolerance = expected / 100_000 + (2 * self.platform.instructions_per_tick()).max(20);
+        let ok = measured.abs_diff(expected) <= tolerance;
+        self.platform.print(format_args!(
+            "calibration expected {} measured {} tolerance {} {}",
+            expected,
+            measured,
+            tolerance,
+            if ok { "ok" } else { "FAILED" }
+        ));
+        if !ok {
+            self.fail("calibration");
+        }
+    }
+
+    /// `math::sqrt_exact` against libm's `sqrtf`, bit for bit (any NaN equals any NaN):
+    /// on hard-float ARM the former is the FPU's `VSQRT.F32`.
+    pub fn check_sqrt(&mut self) {
+        let mut inputs = 0u32;
+        let mut mismatches = 0u32;
+        let platform = &self.platform;
+        let mut check = |x: f32| {
+            let (hw, sw) = (math::sqrt_exact(x), math::sqrt_libm(x));
+            if hw.to_bits() != sw.to_bits() && !(hw.is_nan() && sw.is_nan()) {
+                if mismatches < 5 {
+                    platform.print(format_args!(
+                        "sqrt mismatch {:#010x}: vsqrt {:#010x} libm {:#010x}",
+                        x.to_bits(),
+                        hw.to_bits(),
+                        sw.to_bits()
+                    ));
+                }
+                mismatches += 1;
+            }
+            inputs += 1;
+        };
+        for x in [
+            0.0,
+            -0.0,
+            1.0,
+            2.0,
+            4.0,
+            f32::MIN_POSITIVE,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NAN,
+            -1.0,
+        ] {
+            check(x);
+        }
+        let mut bits = 0u32;
+        while let Some(next) = bits.checked_add(4099) {
+            check(f32::from_bits(bits));
+            bits = next;
+        }
+        self.platform
+            .print(format_args!("sqrt inputs {} mismatches {}", inputs, mismatches));
+        if mismatches != 0 {
+            self.fail("sqrt");
+        }
+    }
+
+    /// What the `PixelHash` sink alone costs per pixel.
+    pub fn sink(&mut self) {
+        let mut hash = PixelHash::new(SIZE);
+        let instr = self.timed(|| sink_only(&mut hash));
+        let pixels = hash.pixels();
+        let ipp10 = ipp10(instr, pixels);
+        self.platform.print(format_args!(
+            "sink pixelhash pixels {} instr {} ipp {}.{}",
+            pixels,
+            instr,
+            ipp10 / 10,
+            ipp10 % 10
+        ));
+    }
+
+    /// Every method on one scene at 240×240: hash, pixels, instructions, stack.
+    pub fn scene<const N: usize>(&mut self, name: &str, scene: &Scene<N>, params: CameraParams) {
+        let camera = match (CameraParams { size: SIZE, ..params }).build() {
+            Ok(camera) => camera,
+            Err(e) => {
+                self.platform.print(format_args!("camera {}: {:?}", name, e));
+                return self.fail("camera");
+            }
+        };
+        let expected_pixels = u64::from(SIZE.width) * u64::from(SIZE.height);
+        for method in Method::ALL {
+            // Timed pass (the counter's interrupt on).
+            let mut hash = PixelHash::new(SIZE);
+            let instr = self.timed(|| render(scene, &camera, method, &mut hash));
+            // Stack pass: the counter's interrupt off (it would push its frame onto the
+            // render's stack), the counter keeps running. Ticks lost meanwhile are
+            // harmless: only differences within one timed pass are used.
+            self.platform.quiet(true);
+            let mut again = PixelHash::new(SIZE);
+            let stack = stack_of(&self.platform, || render(scene, &camera, method, &mut again));
+            self.platform.quiet(false);
+            let pixels = hash.pixels();
+            let ipp10 = ipp10(instr, pixels);
+            self.platform.print(format_args!(
+                "hash {} {} {:#018x} pixels {} instr {} ipp {}.{} stack {}",
+                name,
+                method,
+                hash.hash(),
+                pixels,
+                instr,
+                ipp10 / 10,
+                ipp10 % 10,
+                stack.unwrap_or(0)
+            ));
+            if pixels != expected_pixels {
+                self.fail("pixel count");
+            }
+            if again != hash {
+                self.fail("the two passes differ");
+            }
+            if stack.is_none() {
+                self.fail("stack overflow: the render reached the bottom of the stack region");
+            }
+        }
+    }
+
+    /// Every standard scene (`examples/common/scenes.rs`), every method.
+    pub fn every_scene(&mut self) {
+        self.scene("lab", &scenes::LAB, scenes::LAB_CAMERA);
+        self.scene("far", &scenes::FAR, scenes::FAR_CAMERA);
+        self.scene("grazing", &scenes::GRAZING, scenes::GRAZING_CAMERA);
+        self.scene("drift", &scenes::DRIFT, scenes::DRIFT_CAMERA);
+        self.scene("crowd", &scenes::CROWD, scenes::CROWD_CAMERA);
+    }
+
+    /// Prints the verdict and exits QEMU with it.
+    pub fn finish(self) -> ! {
+        if self.failures == 0 {
+            self.platform.print(format_args!("result ok"));
+            self.platform.exit(true)
+        } else {
+            let failures = self.failures;
+            self.platform.print(format_args!("result FAILED {}", failures));
+            self.platform.exit(false)
+        }
+    }
+}

@@ -2,6 +2,8 @@
 //!
 //! ```sh
 //! cargo build --release --example no_panic --target thumbv7em-none-eabihf
+//! cargo build --release --example no_panic --target thumbv6m-none-eabi          # Cortex-M0
+//! cargo build --release --example no_panic --target riscv32imc-unknown-none-elf  # RV32
 //! ```
 //!
 //! The panic handler is `panic-never`'s, which references an undefined symbol: the
@@ -13,9 +15,9 @@
 //! Needs optimisation (`--release`; opt-level 0 and 1 keep dead panic branches).
 //!
 //! It is also the kernel's flash footprint for one method: its sections minus
-//! `empty_firmware`'s (`.ci/firmware` prints both). Run in QEMU it prints the hash
-//! (`cargo run --release --example no_panic --target thumbv7em-none-eabihf`), through
-//! the raw semihosting `SYS_WRITE0` call — `hprintln!` has a panic path of its own.
+//! `empty_firmware`'s (`.ci/firmware` and `.ci/firmware-nofpu` print both). Run in QEMU
+//! it prints the hash (`cargo run --release --example no_panic --target …`), through the
+//! raw semihosting `SYS_WRITE0` call — `hprintln!` has a panic path of its own.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(target_os = "none")]
@@ -26,13 +28,24 @@ mod scenes;
 mod fw {
     use core::ptr::{addr_of, addr_of_mut, read_volatile, write_volatile};
 
+    #[cfg(target_arch = "arm")]
+    use cortex_m::asm::wfi;
+    #[cfg(target_arch = "arm")]
     use cortex_m_rt::entry;
+    #[cfg(target_arch = "arm")]
     use cortex_m_semihosting::{debug, nr, syscall1};
     use embedded_graphics::prelude::*;
     use embedded_raytracer::{hash::PixelHash, CameraParams, Render, Vec3};
     use panic_never as _;
+    #[cfg(target_arch = "riscv32")]
+    use riscv::asm::wfi;
+    #[cfg(target_arch = "riscv32")]
+    use riscv_rt::entry;
+    #[cfg(target_arch = "riscv32")]
+    use riscv_semihosting::{debug, nr, syscall1};
     // The PAC's vector table: cortex-m-rt's `device` feature (turned on by the stm32f4
-    // dev-dependency) requires it in every firmware example.
+    // dev-dependency on hard-float ARM) requires it.
+    #[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
     use stm32f4xx_hal as _;
 
     use crate::scenes;
@@ -99,12 +112,14 @@ mod fw {
             debug::EXIT_FAILURE
         });
         loop {
-            cortex_m::asm::wfi();
+            wfi();
         }
     }
 }
 
 #[cfg(not(target_os = "none"))]
 fn main() {
-    println!("no_panic is firmware: cargo build --release --example no_panic --target thumbv7em-none-eabihf");
+    println!(
+        "no_panic is firmware: cargo build --release --example no_panic --target thumbv7em-none-eabihf (or thumbv6m-none-eabi, riscv32imc-unknown-none-elf)"
+    );
 }

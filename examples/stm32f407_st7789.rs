@@ -25,11 +25,11 @@
 //! PE3, its chip select, is driven high so it stays off the bus.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
-#[cfg(target_os = "none")]
+#[cfg(all(target_os = "none", target_abi = "eabihf"))]
 #[path = "common/scenes.rs"]
 mod scenes;
 
-#[cfg(target_os = "none")]
+#[cfg(all(target_os = "none", target_abi = "eabihf"))]
 mod fw {
     use core::fmt::Write as _;
 
@@ -134,6 +134,12 @@ mod fw {
         }
     }
 }
+
+#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+#[path = "common/wrong_target.rs"]
+mod wrong_target;
+#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+wrong_target::firmware_for!("stm32f407_st7789", "thumbv7em-none-eabihf");
 
 #[cfg(not(target_os = "none"))]
 fn main() {

@@ -1,7 +1,8 @@
-//! Parser for the output of the `qemu_cortex_m4` firmware example (its line format is
-//! documented there). Shared, through `#[path]`, by `tests/firmware_hashes.rs` (which
-//! compares the hashes with the host's) and `examples/firmware_table.rs` (which formats
-//! the README's table).
+//! Parser for the output of the QEMU firmware examples (`qemu_cortex_m4`,
+//! `qemu_cortex_m0`, `qemu_rv32`; the line format is `examples/common/measure.rs`'s).
+//! Shared, through `#[path]`, by `tests/firmware_hashes.rs` (which compares the hashes
+//! with the host's) and `examples/firmware_table.rs` (which formats the README's
+//! tables).
 
 #![allow(dead_code)]
 
@@ -29,6 +30,13 @@ pub struct Calibration {
 /// Everything the firmware printed.
 #[derive(Clone, Debug, Default)]
 pub struct QemuOutput {
+    /// The firmware's name: the first word of its header line (`qemu_cortex_m0: …`).
+    pub name: Option<String>,
+    /// The clock SysTick counts (`clock` line); `None` for a counter of instructions
+    /// (`counter` line, RV32's `minstret`).
+    pub clock_hz: Option<u64>,
+    /// `(loop instructions, minstret, mcycle)` of RV32's `counters` line.
+    pub counters: Option<(u64, u64, u64)>,
     pub entries: Vec<Entry>,
     pub calibrations: Vec<Calibration>,
     /// `(inputs, mismatches)` of the VSQRT-vs-libm check.
@@ -115,7 +123,21 @@ impl QemuOutput {
                         number(&words, "instr").ok_or_else(|| err("bad instr"))?,
                     ))
                 }
+                Some("clock") => {
+                    let hz = words.get(1).and_then(|w| w.parse().ok());
+                    out.clock_hz = Some(hz.ok_or_else(|| err("bad clock"))?);
+                }
+                Some("counters") => {
+                    out.counters = Some((
+                        number(&words, "loop").ok_or_else(|| err("bad loop"))?,
+                        number(&words, "minstret").ok_or_else(|| err("bad minstret"))?,
+                        number(&words, "mcycle").ok_or_else(|| err("bad mcycle"))?,
+                    ))
+                }
                 Some("result") => out.ok = words.get(1) == Some(&"ok"),
+                Some(first) if out.name.is_none() && first.starts_with("qemu_") && first.ends_with(':') => {
+                    out.name = Some(first.trim_end_matches(':').to_string());
+                }
                 _ => {}
             }
         }
@@ -127,6 +149,13 @@ impl QemuOutput {
         self.entries
             .iter()
             .find(|e| e.scene == scene && e.method == method)
+    }
+}
+
+impl QemuOutput {
+    /// Instructions per tick of the counter, rounded up: 1 for an instruction counter.
+    pub fn instructions_per_tick(&self) -> u64 {
+        self.clock_hz.map_or(1, |hz| 1_000_000_000_u64.div_ceil(hz.max(1)))
     }
 }
 

@@ -38,7 +38,12 @@ fn main() {
         std::fs::write(out.join("memory.x"), memory).expect("write memory.x to OUT_DIR");
         println!("cargo::rustc-link-search={}", out.display());
     }
-    for file in ["memory-stm32f4.x", "memory-nrf51.x", "memory-rv32-virt.x", "build.rs"] {
+    for file in [
+        "memory-stm32f4.x",
+        "memory-nrf51.x",
+        "memory-rv32-virt.x",
+        "build.rs",
+    ] {
         println!("cargo::rerun-if-changed={file}");
     }
 }

@@ -1,12 +1,14 @@
-//! Formats a `qemu_cortex_m4` run as the README's Markdown tables: instructions per
-//! pixel for every method on every standard scene at 240×240, the stack of a render,
-//! and a frame-rate estimate.
+//! Formats a QEMU firmware run (`qemu_cortex_m4`, `qemu_cortex_m0`, `qemu_rv32`) as the
+//! README's Markdown tables: instructions per pixel for every method on every standard
+//! scene at 240×240, the stack of a render, and a frame-rate estimate.
 //!
 //! ```sh
 //! cargo run --example firmware_table -- [QEMU-OUTPUT]   # default: tests/data/qemu_cortex_m4.txt
+//! cargo run --example firmware_table -- tests/data/qemu_cortex_m0.txt --estimate "an RP2040" 133
 //! ```
 //!
-//! `.ci/firmware` runs QEMU and then this on the fresh output.
+//! Without `--estimate CHIP MHZ` the estimate is the STM32F405/407's at 168 MHz.
+//! `.ci/firmware` and `.ci/firmware-nofpu` run QEMU and then this on the fresh output.
 
 #[path = "common/qemu_output.rs"]
 mod qemu_output;
@@ -22,10 +24,48 @@ const PIXELS: f64 = 240.0 * 240.0;
 /// The STM32F405/407's maximum core clock.
 const F_CLK_HZ: f64 = 168e6;
 
+/// `--estimate CHIP MHZ`: a chip to estimate the frame rate of, at its clock.
+struct Estimate {
+    chip: String,
+    mhz: f64,
+}
+
+/// `(run path, estimate)` from the command line.
+fn args() -> Result<(String, Option<Estimate>), String> {
+    let mut path = None;
+    let mut estimate = None;
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        if arg == "--estimate" {
+            let (Some(chip), Some(mhz)) = (args.next(), args.next()) else {
+                return Err("--estimate needs CHIP and MHZ".into());
+            };
+            let mhz = mhz
+                .parse::<f64>()
+                .ok()
+                .filter(|m| *m > 0.0)
+                .ok_or_else(|| format!("--estimate: bad MHZ {mhz:?}"))?;
+            estimate = Some(Estimate { chip, mhz });
+        } else if path.is_none() {
+            path = Some(arg);
+        } else {
+            return Err(format!("unexpected argument {arg:?}"));
+        }
+    }
+    Ok((
+        path.unwrap_or_else(|| "tests/data/qemu_cortex_m4.txt".into()),
+        estimate,
+    ))
+}
+
 fn main() -> ExitCode {
-    let path = std::env::args()
-        .nth(1)
-        .unwrap_or_else(|| "tests/data/qemu_cortex_m4.txt".into());
+    let (path, estimate) = match args() {
+        Ok(args) => args,
+        Err(e) => {
+            eprintln!("error: {e}\nusage: firmware_table [QEMU-OUTPUT] [--estimate CHIP MHZ]");
+            return ExitCode::from(2);
+        }
+    };
     let output = match std::fs::read_to_string(&path)
         .map_err(|e| e.to_string())
         .and_then(|text| QemuOutput::parse(&text).map_err(|e| e.to_string()))
@@ -63,8 +103,14 @@ fn main() -> ExitCode {
         );
     }
 
+    // Only SysTick (a `clock` line) needs an interrupt; RV32's minstret has none.
+    let interrupt = if output.clock_hz.is_some() {
+        " with the SysTick interrupt off"
+    } else {
+        ""
+    };
     println!(
-        "\nStack bytes of a render (high-water mark below the caller: stack painted before, scanned after, in an untimed second render with the SysTick interrupt off), lowest–highest over the {} methods:\n",
+        "\nStack bytes of a render (high-water mark below the caller: stack painted before, scanned after, in an untimed second render{interrupt}), lowest–highest over the {} methods:\n",
         Method::ALL.len()
     );
     println!("| {} |", SCENES.join(" | "));
@@ -86,12 +132,18 @@ fn main() -> ExitCode {
         .collect();
     println!("| {} |", cells.join(" | "));
 
-    if let Some(e) = output.get("lab", &Method::DEFAULT.to_string()) {
-        println!(
+    match (output.get("lab", &Method::DEFAULT.to_string()), &estimate) {
+        (Some(e), Some(Estimate { chip, mhz })) => println!(
+            "\nEstimate only: {chip} at {mhz} MHz would draw {:.2} frames/s at 240×240 with the default method on `lab` ({:.1} instructions per pixel) if one instruction were one cycle; a real core needs more cycles than instructions (flash wait states, multi-cycle loads and branches).",
+            mhz * 1e6 / (e.ipp() * PIXELS),
+            e.ipp()
+        ),
+        (Some(e), None) => println!(
             "\nEstimate only: at 168 MHz and one instruction per cycle, the default method's {:.1} instructions per pixel on `lab` would be {:.1} frames/s at 240×240 (a real Cortex-M4 takes more cycles than instructions: flash wait states, 14-cycle divides and square roots).",
             e.ipp(),
             F_CLK_HZ / (e.ipp() * PIXELS)
-        );
+        ),
+        (None, _) => {}
     }
     if !output.ok {
         eprintln!("error: {path}: the firmware run did not end with `result ok`");

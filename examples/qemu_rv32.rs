@@ -46,7 +46,7 @@ mod fw {
         let mut run = Run::start(Rv32::new("qemu_rv32"));
         run.calibrate(1_000_000); // 2 M instructions
         run.calibrate(100_000_000); // 200 M instructions
-        // minstret and mcycle over the same loop: equal under QEMU's -icount.
+                                    // minstret and mcycle over the same loop: equal under QEMU's -icount.
         let (i0, c0) = (rv32::minstret(), rv32::mcycle());
         run.platform.spin(1_000_000);
         let (i1, c1) = (rv32::minstret(), rv32::mcycle());
@@ -69,5 +69,7 @@ wrong_target::firmware_for!("qemu_rv32", "riscv32imc-unknown-none-elf");
 
 #[cfg(not(target_os = "none"))]
 fn main() {
-    println!("qemu_rv32 is firmware: cargo run --release --example qemu_rv32 --target riscv32imc-unknown-none-elf");
+    println!(
+        "qemu_rv32 is firmware: cargo run --release --example qemu_rv32 --target riscv32imc-unknown-none-elf"
+    );
 }

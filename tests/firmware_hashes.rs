@@ -56,7 +56,11 @@ fn firmware_output(name: &str) -> (String, QemuOutput) {
     let path = format!("tests/data/{name}.txt");
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
     let output = QemuOutput::parse(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
-    assert_eq!(output.name.as_deref(), Some(name), "{path}: header names another firmware");
+    assert_eq!(
+        output.name.as_deref(),
+        Some(name),
+        "{path}: header names another firmware"
+    );
     (path, output)
 }
 
@@ -201,7 +205,10 @@ fn rv32_run_passed_its_own_checks() {
 fn fresh_runs_are_named_runs() {
     for (path, output) in fresh_runs() {
         let name = output.name.unwrap_or_default();
-        assert!(RUNS.contains(&name.as_str()), "{path}: header names {name:?}, not one of {RUNS:?}");
+        assert!(
+            RUNS.contains(&name.as_str()),
+            "{path}: header names {name:?}, not one of {RUNS:?}"
+        );
     }
 }
 

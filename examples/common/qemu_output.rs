@@ -155,7 +155,8 @@ impl QemuOutput {
 impl QemuOutput {
     /// Instructions per tick of the counter, rounded up: 1 for an instruction counter.
     pub fn instructions_per_tick(&self) -> u64 {
-        self.clock_hz.map_or(1, |hz| 1_000_000_000_u64.div_ceil(hz.max(1)))
+        self.clock_hz
+            .map_or(1, |hz| 1_000_000_000_u64.div_ceil(hz.max(1)))
     }
 }
 

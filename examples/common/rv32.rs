@@ -100,7 +100,10 @@ impl Platform for Rv32 {
     }
 
     fn describe_counter(&self, overhead_ticks: u64) {
-        hprintln!("counter minstret instructions = ticks overhead_ticks {}", overhead_ticks);
+        hprintln!(
+            "counter minstret instructions = ticks overhead_ticks {}",
+            overhead_ticks
+        );
     }
 
     /// `addi` + `bnez` per iteration.

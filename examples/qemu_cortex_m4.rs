@@ -25,7 +25,7 @@
 //!   (the stack is painted before and scanned after), measured in a second, untimed
 //!   render with the SysTick interrupt off so no exception frame lands on the stack.
 //!
-//! Also checks `math::sqrt_exact` (`VSQRT.F32`) bit for bit against `math::sqrt_libm`
+//! Also checks `math::sqrt_exact` (`VSQRT.F32`) bit for bit against `libm::sqrtf`
 //! over every 4099th `f32` bit pattern. Exits through semihosting with status 1 on any
 //! failure (a wrong pixel count, a calibration off by more than its tolerance, a square
 //! root mismatch, an unbuildable camera, differing hashes between the two passes).
@@ -192,6 +192,17 @@ mod fw {
         failures: u32,
     }
 
+    impl scenes::EachScene for Run {
+        fn scene<const N: usize>(
+            &mut self,
+            name: &'static str,
+            scene: &'static Scene<N>,
+            camera: CameraParams,
+        ) {
+            self.measure_scene(name, scene, camera);
+        }
+    }
+
     impl Run {
         fn fail(&mut self, what: &str) {
             hprintln!("FAIL {}", what);
@@ -225,7 +236,7 @@ mod fw {
             let mut inputs = 0u32;
             let mut mismatches = 0u32;
             let mut check = |x: f32| {
-                let (hw, sw) = (math::sqrt_exact(x), math::sqrt_libm(x));
+                let (hw, sw) = (math::sqrt_exact(x), libm::sqrtf(x));
                 if hw.to_bits() != sw.to_bits() && !(hw.is_nan() && sw.is_nan()) {
                     if mismatches < 5 {
                         hprintln!(
@@ -280,7 +291,7 @@ mod fw {
         }
 
         /// Every method on one scene at 240×240: hash, pixels, instructions, stack.
-        fn scene<const N: usize>(&mut self, name: &str, scene: &Scene<N>, params: CameraParams) {
+        fn measure_scene<const N: usize>(&mut self, name: &str, scene: &Scene<N>, params: CameraParams) {
             let camera = match (CameraParams { size: SIZE, ..params }).build() {
                 Ok(camera) => camera,
                 Err(e) => {
@@ -367,11 +378,7 @@ mod fw {
         run.calibrate(100_000_000); // 200 M instructions: 2 wraps
         run.check_sqrt();
         run.sink();
-        run.scene("lab", &scenes::LAB, scenes::LAB_CAMERA);
-        run.scene("far", &scenes::FAR, scenes::FAR_CAMERA);
-        run.scene("grazing", &scenes::GRAZING, scenes::GRAZING_CAMERA);
-        run.scene("drift", &scenes::DRIFT, scenes::DRIFT_CAMERA);
-        run.scene("crowd", &scenes::CROWD, scenes::CROWD_CAMERA);
+        scenes::for_each(&mut run);
         if run.failures == 0 {
             hprintln!("result ok");
             debug::exit(debug::EXIT_SUCCESS);

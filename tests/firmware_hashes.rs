@@ -47,11 +47,20 @@ fn host<const N: usize>(
 #[test]
 fn firmware_pixels_equal_the_hosts() {
     let (path, firmware) = firmware_output();
-    let mut host_entries = host("lab", &scenes::LAB, scenes::LAB_CAMERA);
-    host_entries.extend(host("far", &scenes::FAR, scenes::FAR_CAMERA));
-    host_entries.extend(host("grazing", &scenes::GRAZING, scenes::GRAZING_CAMERA));
-    host_entries.extend(host("drift", &scenes::DRIFT, scenes::DRIFT_CAMERA));
-    host_entries.extend(host("crowd", &scenes::CROWD, scenes::CROWD_CAMERA));
+    struct Host(Vec<(String, String, u64, u64)>);
+    impl scenes::EachScene for Host {
+        fn scene<const N: usize>(
+            &mut self,
+            name: &'static str,
+            scene: &'static Scene<N>,
+            camera: CameraParams,
+        ) {
+            self.0.extend(host(name, scene, camera));
+        }
+    }
+    let mut host_entries = Host(Vec::new());
+    scenes::for_each(&mut host_entries);
+    let host_entries = host_entries.0;
     assert_eq!(host_entries.len(), 5 * Method::ALL.len());
 
     let mut differences = Vec::new();

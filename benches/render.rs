@@ -18,9 +18,11 @@ use std::time::{Duration, Instant};
 use criterion::{BenchmarkId, Criterion, Throughput};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use embedded_raytracer::{scene_file, Method, Render};
+use embedded_raytracer::{Method, Options, Render};
 
-const SCENES: [&str; 5] = ["lab", "crowd", "far", "grazing", "drift"];
+#[path = "../examples/common/standard.rs"]
+mod standard;
+use standard::SCENES;
 const BASELINE: &str = "baseline";
 
 #[path = "../examples/common/slice_target.rs"]
@@ -40,8 +42,7 @@ fn main() {
         .configure_from_args();
 
     for name in SCENES {
-        let path = format!("{}/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
-        let file = scene_file::load::<64>(&path).expect("standard scene");
+        let file = standard::load(name);
         let size = file.camera.size();
         let pixels = u64::from(size.width) * u64::from(size.height);
         let mut buf = vec![Rgb565::BLACK; pixels as usize];
@@ -55,7 +56,7 @@ fn main() {
                 b.iter_custom(|iters| {
                     let render = Render::new(&file.scene, &file.camera)
                         .with_method(method)
-                        .with_span_culling(culling);
+                        .with_options(Options::DEFAULT.with_span_culling(culling));
                     let start = Instant::now();
                     for _ in 0..iters {
                         let mut target = SliceTarget { buf: &mut buf, size };

@@ -14,8 +14,9 @@ use embedded_graphics::pixelcolor::Rgb888;
 use embedded_raytracer::reference::{self, sweeps};
 use embedded_raytracer::{scene_file, Method, Render, Stepping};
 
-/// The standard scenes, in the README's order.
-const SCENES: [&str; 5] = ["lab", "far", "grazing", "drift", "crowd"];
+#[path = "common/standard.rs"]
+mod standard;
+use standard::{MAX_SPHERES, SCENES};
 
 fn main() -> ExitCode {
     let mut out = String::new();
@@ -43,10 +44,10 @@ fn scenes_table(out: &mut String) -> Result<(), scene_file::SceneFileError> {
     out.push_str("| scene | method | coverage errors | fraction | shade max | shade mean | drift (px) | undecidable |\n");
     out.push_str("|---|---|---:|---:|---:|---:|---:|---:|\n");
     for name in SCENES {
-        let f = scene_file::load::<64>(format!("scenes/{name}.toml"))?;
+        let f = scene_file::load::<MAX_SPHERES>(standard::path(name))?;
         let truth = reference::render(&f.scene, &f.camera);
         for method in Method::ALL {
-            let render = Render::<64, Rgb888>::new(&f.scene, &f.camera).with_method(method);
+            let render = Render::<MAX_SPHERES, Rgb888>::new(&f.scene, &f.camera).with_method(method);
             let m = reference::compare(&render, &truth);
             out.push_str(&format!(
                 "| {name} | {method}{} | {} | {:.2e} | {} | {:.4} | {:.4} | {} |\n",

@@ -17,8 +17,10 @@ use std::process::ExitCode;
 
 use embedded_raytracer::Method;
 use qemu_output::QemuOutput;
+use standard::SCENES;
 
-const SCENES: [&str; 5] = ["lab", "far", "grazing", "drift", "crowd"];
+#[path = "common/standard.rs"]
+mod standard;
 /// Pixels of a 240×240 frame.
 const PIXELS: f64 = 240.0 * 240.0;
 /// The STM32F405/407's maximum core clock.

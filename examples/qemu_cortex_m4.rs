@@ -27,7 +27,7 @@
 //!   (the stack is painted before and scanned after), measured in a second, untimed
 //!   render with the SysTick interrupt off so no exception frame lands on the stack.
 //!
-//! Also checks `math::sqrt_exact` (`VSQRT.F32`) bit for bit against `math::sqrt_libm`
+//! Also checks `math::sqrt_exact` (`VSQRT.F32`) bit for bit against `libm::sqrtf`
 //! over every 4099th `f32` bit pattern. Exits through semihosting with status 1 on any
 //! failure (a wrong pixel count, a calibration off by more than its tolerance, a square
 //! root mismatch, an unbuildable camera, differing hashes between the two passes).

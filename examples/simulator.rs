@@ -56,8 +56,9 @@ use embedded_raytracer::{
     scene_file, Camera, CameraParams, Method, Render, Scene, SphereTest, Sqrt, Stepping, Vec3,
 };
 
-/// Scene-file capacity (as the render CLI).
-const MAX_SPHERES: usize = 256;
+#[path = "common/standard.rs"]
+mod standard;
+use standard::MAX_SPHERES;
 
 /// The difference view's reference: no accumulation, no cancellation, exact root.
 const REFERENCE: Method = Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact);
@@ -74,11 +75,15 @@ const POLL: Duration = Duration::from_millis(250);
 /// Colour of differing pixels in the difference view.
 const DIFF_COLOR: Rgb888 = Rgb888::new(255, 0, 255);
 
-const USAGE: &str = "usage: simulator [SCENE.toml] [--display MODEL] [--size WxH] [--scale N] \
-[--bayer 4|8] [--theme oled-blue|oled-white] [--stepping world-space|incremental|direct] \
-[--sphere-test algebraic|geometric|robust] [--sqrt exact|fast] [--diff] [--no-overlay] \
+fn usage() -> String {
+    format!(
+        "usage: simulator [SCENE.toml] [--display MODEL] [--size WxH] [--scale N] \
+[--bayer 4|8] [--theme oled-blue|oled-white] {} [--diff] [--no-overlay] \
 [--screenshot OUT.png [--frames N]]\n  MODEL: rgb888 rgb565 gray8 gray4 gray4-dither gray2 \
-gray2-dither binary binary-dither";
+gray2-dither binary binary-dither",
+        standard::method_flags()
+    )
+}
 
 /// The display the firmware drives: colour type and whether the kernel's dither sits
 /// in front of it.
@@ -396,7 +401,7 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Args, String> {
                     .map_err(|_| format!("--frames: expected a number, got `{v}`"))?;
                 a.frames = Some(n.max(1));
             }
-            "--help" | "-h" => return Err(USAGE.to_string()),
+            "--help" | "-h" => return Err(usage()),
             flag if flag.starts_with('-') => return Err(format!("unknown flag `{flag}`")),
             path if !scene_given => {
                 a.scene = PathBuf::from(path);

@@ -30,11 +30,12 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::text::Text;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use embedded_raytracer::reference::{self, compare, ReferenceImage};
-use embedded_raytracer::{scene_file, Camera, Method, Render, Scene, SphereTest, Sqrt, Stepping};
+use embedded_raytracer::{scene_file, Camera, Method, Options, Render, Scene, SphereTest, Sqrt, Stepping};
 use plotters::prelude::*;
 
-const SCENES: [&str; 5] = ["lab", "crowd", "far", "grazing", "drift"];
-const MAX_SPHERES: usize = 64;
+#[path = "common/standard.rs"]
+mod standard;
+use standard::{MAX_SPHERES, SCENES};
 
 // ---------------------------------------------------------------------------------
 // Timing and errors.
@@ -56,7 +57,7 @@ fn time_render<const N: usize>(
     let mut buf = vec![Rgb565::BLACK; (size.width * size.height) as usize];
     let render = Render::new(scene, camera)
         .with_method(method)
-        .with_span_culling(culling);
+        .with_options(Options::DEFAULT.with_span_culling(culling));
     let mut times: Vec<f64> = (0..runs)
         .map(|_| {
             let mut target = SliceTarget { buf: &mut buf, size };
@@ -81,7 +82,7 @@ fn errors<const N: usize>(
 ) -> (usize, u8) {
     let render = Render::<N, Rgb888>::new(scene, camera)
         .with_method(method)
-        .with_span_culling(culling);
+        .with_options(Options::DEFAULT.with_span_culling(culling));
     let m = compare(&render, reference);
     (m.coverage_errors, m.shade_max)
 }
@@ -541,11 +542,10 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let args = parse_args()?;
     let runs = if args.quick { 1 } else { 15 };
     std::fs::create_dir_all(&args.out)?;
-    let root = env!("CARGO_MANIFEST_DIR");
     // Errors first (one trace per method and scene), then the timing rounds.
     let files = SCENES
         .iter()
-        .map(|scene| scene_file::load::<MAX_SPHERES>(format!("{root}/scenes/{scene}.toml")))
+        .map(|scene| scene_file::load::<MAX_SPHERES>(standard::path(scene)))
         .collect::<Result<Vec<_>, _>>()?;
     let mut points: Vec<Point3> = Vec::new();
     let mut cases = Vec::new();
@@ -587,7 +587,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     }
 
     // Growth curve: the first n spheres of crowd.
-    let crowd = scene_file::load::<MAX_SPHERES>(format!("{root}/scenes/crowd.toml"))?;
+    let crowd = scene_file::load::<MAX_SPHERES>(standard::path("crowd"))?;
     let counts: &[usize] = if args.quick {
         &[1, 64]
     } else {
@@ -615,7 +615,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     // forward differences against the robust test on lab and crowd.
     let mut isolated = Vec::new();
     for scene in ["lab", "crowd"] {
-        let file = scene_file::load::<MAX_SPHERES>(format!("{root}/scenes/{scene}.toml"))?;
+        let file = scene_file::load::<MAX_SPHERES>(standard::path(scene))?;
         for stepping in [Stepping::Direct, Stepping::Incremental] {
             let robust = Method::new(stepping, SphereTest::Robust, Sqrt::Exact);
             let fd = Method::new(stepping, SphereTest::ForwardDiff, Sqrt::Exact);
@@ -742,14 +742,14 @@ fn write_outputs(
         }
         writeln!(md)?;
     }
-    // The targets, as measured.
+    // The speed targets the project set itself, as measured.
     let default = Method::DEFAULT.to_string();
     let ratio = |scene: &str, a: &str, b: &str| Some(ns_of(scene, a)? / ns_of(scene, b)?);
     writeln!(md, "\n## Targets (measured in this run)\n")?;
     if let Some(r) = ratio("lab", BASELINE, &default) {
         writeln!(md, "- default ({default}) on `lab`: {r:.2}× faster per pixel than the literal baseline (target ≥ 8×).")?;
     }
-    for stepping in ["direct", "incremental"] {
+    for stepping in [Stepping::Direct, Stepping::Incremental] {
         for scene in ["lab", "crowd"] {
             if let Some(r) = ratio(
                 scene,

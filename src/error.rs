@@ -3,6 +3,8 @@
 
 use core::fmt;
 
+pub use crate::method::ParseMethodError;
+
 /// A camera parameter, as named by [`CameraError`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CameraParam {
@@ -72,7 +74,7 @@ impl CameraError {
 
 impl fmt::Display for CameraError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        use crate::camera::{MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
+        use crate::limits::{MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
         match self {
             CameraError::NotFinite(p) => write!(f, "`{}` is not a finite number", p.file_key()),
             CameraError::EyeAtLookAt => {
@@ -152,20 +154,3 @@ impl From<SphereError> for SceneError {
         SceneError::Sphere(e)
     }
 }
-
-/// A method name (`--stepping`, `--sphere-test`, `--sqrt`) that is not one of the choices.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ParseMethodError {
-    /// What was being parsed (`stepping`, `sphere test`, `sqrt`).
-    pub what: &'static str,
-    /// The accepted names, separated by `, `.
-    pub expected: &'static str,
-}
-
-impl fmt::Display for ParseMethodError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "unknown {}: expected one of {}", self.what, self.expected)
-    }
-}
-
-impl core::error::Error for ParseMethodError {}

@@ -39,6 +39,44 @@
 //! `colour × clamp(n·(−w), 0.3, 1)`. The same scene and method give bit-identical
 //! pixels on every target (IEEE-754 `f32`, no fused multiply-add, the same libm).
 //!
+//! ## The pipeline, and the module for each step
+//!
+//! A frame is drawn in one pass, from the camera to the display:
+//!
+//! 1. **Camera** ([`camera`]): the u/v/w basis, the pixel size from the field of view,
+//!    the upper-left pixel's direction and the per-column and per-row steps — once,
+//!    when the camera is built.
+//! 2. **Method** ([`method`], matched once per frame in `dispatch.rs`): the [`Method`]
+//!    value becomes zero-sized strategy types — a stepping (`stepping.rs`), a sphere
+//!    test ([`intersect`]) and a square root ([`math`]) — and everything below is
+//!    monomorphised over them, so the pixel loop has no branch on the method.
+//! 3. **Per-frame constants** (`frame.rs`): the visible part of the image, and per
+//!    sphere its eye-relative geometry, the test's and the shader's constants.
+//! 4. **Silhouettes and spans** (`span.rs`): each sphere's silhouette as an ellipse on
+//!    the image, enlarged by the proven rounding margins, cut per row into the columns
+//!    whose rays can hit it.
+//! 5. **Per-row tests** (`scanline.rs`): per pixel, the ray's direction from the
+//!    stepping, the closest hit among the spheres whose span holds the column.
+//! 6. **Shade** ([`shade`]): the hit's colour (the seed's Lab #1).
+//! 7. **Sink** (`sink.rs`): each row, as an iterator, into the target's
+//!    `fill_contiguous` (or to a callback for [`Render::trace`]); [`dither`] and
+//!    [`hash`] are targets that adapt or summarise the stream.
+//!
+//! `ARCHITECTURE.md` in the repository says where to add a primitive, a light, a
+//! sample per pixel or a number format.
+//!
+//! ## Terms from the lecture notes
+//!
+//! - **Lab #1** (shading): the notes' first lab's colour rule,
+//!   `colour × clamp(n_z, 0.3, 1)`, where `n_z = n·(−w)` is the z of the unit outward
+//!   normal in view space ([`shade::lab1`]).
+//! - **The slides' stepping** ([`Stepping::WorldSpace`]): the pixel centre stepped in
+//!   world space, `p += pw·u` per pixel and `scanlineStart −= ph·v` per row, the ray
+//!   being `p − eye`.
+//! - **The slides' tests**: the algebraic (`b² − 4ac`) and geometric (`t_ca`, `d²`)
+//!   ray–sphere tests ([`SphereTest::Algebraic`], [`SphereTest::Geometric`]).
+//! - **The literal method** ([`Method::LITERAL`]): all of the above, as the notes give them.
+//!
 //! ## Low-depth displays
 //!
 //! [`dither`] turns the `Rgb888` stream into `BinaryColor`, `Gray2` or `Gray4` with an
@@ -77,19 +115,27 @@
 extern crate std;
 
 pub mod camera;
+mod dispatch;
 pub mod dither;
 pub mod error;
+mod frame;
 pub mod hash;
+pub mod intersect;
+mod limits;
 pub mod math;
+pub mod method;
 #[cfg(host_std)]
 pub mod reference;
 pub mod render;
+mod scanline;
 pub mod scene;
 #[cfg(host_std)]
 pub mod scene_file;
 pub mod shade;
+mod sink;
 mod span;
 pub mod sphere;
+mod stepping;
 pub mod vec3;
 
 pub use camera::{Camera, CameraParams};
@@ -99,7 +145,8 @@ pub use camera::{Camera, CameraParams};
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
 pub use error::{CameraError, CameraParam, ParseMethodError, SceneError, SphereError};
-pub use render::{Method, Render, Sample, SphereTest, Sqrt, Stepping};
+pub use method::{Method, SphereTest, Sqrt, Stepping};
+pub use render::{Options, Render, Sample};
 pub use scene::{Hit, Scene};
 pub use sphere::Sphere;
 pub use vec3::Vec3;

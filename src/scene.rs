@@ -1,12 +1,16 @@
-//! A fixed-capacity scene of spheres and the closest-hit search.
+//! A fixed-capacity scene of spheres and the closest-hit search for one ray (through
+//! the one dispatch, like the renderer).
 
 use embedded_graphics::pixelcolor::Rgb888;
 use heapless::Vec;
 
+use crate::dispatch::{dispatch_ray, Visit};
 use crate::error::SceneError;
-use crate::math::{ExactSqrt, FastSqrt, SqrtFn};
-use crate::render::{SphereTest, Sqrt};
-use crate::sphere::{Algebraic, ForwardDiff, Geometric, HitTest, Robust, Sphere, SphereConsts};
+use crate::intersect::{SphereGeom, TestStrategy};
+use crate::math::SqrtFn;
+use crate::method::{SphereTest, Sqrt};
+use crate::sphere::Sphere;
+use crate::stepping::Stepper;
 use crate::vec3::Vec3;
 
 /// Up to `N` spheres and a background colour. No allocation: the spheres live in a
@@ -104,37 +108,40 @@ impl<const N: usize> Scene<N> {
     /// ```
     #[must_use]
     pub fn closest_hit(&self, origin: Vec3, dir: Vec3, test: SphereTest, sqrt: Sqrt) -> Option<Hit> {
-        // Closest hit: each test gets the nearest `t` found so far as its `t_max`, so a
-        // farther sphere is rejected by the same comparison that finds hits. Constants
-        // are made per sphere as it is tested (no per-query buffer on the stack).
-        fn search<T: HitTest, Q: SqrtFn>(spheres: &[Sphere], origin: Vec3, dir: Vec3) -> Option<Hit> {
-            let a = dir.dot(dir);
-            let mut t_max = f32::INFINITY;
-            let mut best = None;
-            for (index, sphere) in spheres.iter().enumerate() {
-                let s = SphereConsts::new(sphere, origin, Vec3::ZERO);
-                if let Some(t) = T::hit::<Q>(&s, dir, a, t_max) {
-                    t_max = t;
-                    best = Some(Hit { index, t });
+        struct Query<'s> {
+            spheres: &'s [Sphere],
+            origin: Vec3,
+            dir: Vec3,
+        }
+        impl Visit for Query<'_> {
+            type Output = Option<Hit>;
+            #[inline(always)]
+            fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Option<Hit> {
+                // Closest hit: each test gets the nearest `t` found so far as its
+                // `t_max`, so a farther sphere is rejected by the same comparison that
+                // finds hits. Constants are made per sphere as it is tested (no
+                // per-query buffer on the stack).
+                let a = self.dir.dot(self.dir);
+                let mut t_max = f32::INFINITY;
+                let mut best = None;
+                for (index, sphere) in self.spheres.iter().enumerate() {
+                    let g = SphereGeom::new(sphere.center, sphere.radius, self.origin);
+                    if let Some(t) = T::ray::<Q>(&g, self.dir, a, t_max) {
+                        t_max = t;
+                        best = Some(Hit { index, t });
+                    }
                 }
-            }
-            best
-        }
-        let s = &self.spheres;
-        match (test, sqrt) {
-            (SphereTest::Algebraic, Sqrt::Exact) => search::<Algebraic, ExactSqrt>(s, origin, dir),
-            (SphereTest::Algebraic, Sqrt::Fast) => search::<Algebraic, FastSqrt>(s, origin, dir),
-            (SphereTest::Geometric, Sqrt::Exact) => search::<Geometric, ExactSqrt>(s, origin, dir),
-            (SphereTest::Geometric, Sqrt::Fast) => search::<Geometric, FastSqrt>(s, origin, dir),
-            (SphereTest::Robust, Sqrt::Exact) => search::<Robust, ExactSqrt>(s, origin, dir),
-            (SphereTest::Robust, Sqrt::Fast) => search::<Robust, FastSqrt>(s, origin, dir),
-            // One ray: the forward-differenced test at an anchor (direct evaluation).
-            (SphereTest::ForwardDiff | SphereTest::Auto, Sqrt::Exact) => {
-                search::<ForwardDiff, ExactSqrt>(s, origin, dir)
-            }
-            (SphereTest::ForwardDiff | SphereTest::Auto, Sqrt::Fast) => {
-                search::<ForwardDiff, FastSqrt>(s, origin, dir)
+                best
             }
         }
+        dispatch_ray(
+            test,
+            sqrt,
+            Query {
+                spheres: &self.spheres,
+                origin,
+                dir,
+            },
+        )
     }
 }

@@ -1,6 +1,59 @@
-//! The seed's "Lab #1" shading.
+//! Shading: the colour of a hit, behind the `Shader` strategy type. Today the one
+//! model is the seed's Lab #1 (`Lab1`, zero-sized); a lit model (lights, shadow rays,
+//! mirrors) is another `Shader`, chosen per frame by the scene's type, so a scene
+//! without lights keeps this one's loop.
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+
+use crate::intersect::SphereGeom;
+use crate::sphere::Sphere;
+use crate::vec3::Vec3;
+
+/// A shading model as a strategy type: the scanline loop is monomorphised over it.
+pub(crate) trait Shader {
+    /// Per-frame, per-object constants (built once per frame with the geometry).
+    type Object: Copy;
+    /// The constants of `sphere`, whose eye-relative geometry is `g`; `w` is the
+    /// camera's view direction.
+    fn object(sphere: &Sphere, g: &SphereGeom, w: Vec3) -> Self::Object;
+    /// The colour of the hit at `t` along the primary ray `eye + t·d`.
+    fn shade(o: &Self::Object, w: Vec3, d: Vec3, t: f32) -> Rgb888;
+}
+
+/// The seed's Lab #1 shading ([`lab1`]) as a [`Shader`].
+pub(crate) struct Lab1;
+
+/// [`Lab1`]'s per-sphere constants.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Lab1Object {
+    /// `L·w`, for the view-space normal.
+    lw: f32,
+    /// `1/r`.
+    inv_r: f32,
+    /// The object colour's channels as `f32`.
+    rgb: [f32; 3],
+}
+
+impl Shader for Lab1 {
+    type Object = Lab1Object;
+
+    #[inline(always)]
+    fn object(sphere: &Sphere, g: &SphereGeom, w: Vec3) -> Lab1Object {
+        Lab1Object {
+            lw: g.l.dot(w),
+            inv_r: 1.0 / sphere.radius,
+            rgb: channels(sphere.color),
+        }
+    }
+
+    #[inline(always)]
+    fn shade(o: &Lab1Object, w: Vec3, d: Vec3, t: f32) -> Rgb888 {
+        // The view-space normal n·(−w) = ((L − t·d)·w)/r, camera-relative so |eye|
+        // does not cost precision.
+        let n_z = (o.lw - t * d.dot(w)) * o.inv_r;
+        lab1_channels(o.rgb, n_z)
+    }
+}
 
 /// Lowest shading factor: surfaces facing away are never darker than 30 %.
 pub const AMBIENT: f32 = 0.3;
@@ -30,17 +83,17 @@ pub fn lab1(color: Rgb888, n_z: f32) -> Rgb888 {
 /// loop does not convert them per hit.
 #[must_use]
 #[inline]
-pub(crate) fn channels(color: Rgb888) -> [f32; 3] {
+fn channels(color: Rgb888) -> [f32; 3] {
     [f32::from(color.r()), f32::from(color.g()), f32::from(color.b())]
 }
 
 /// [`lab1`] on pre-converted channels: bit-identical (the u8 → f32 conversion is exact).
 #[inline(always)]
-pub(crate) fn lab1_channels(c: [f32; 3], n_z: f32) -> Rgb888 {
+fn lab1_channels(c: [f32; 3], n_z: f32) -> Rgb888 {
     // Clamp with comparisons, not `max`/`min` (on a Cortex-M4 those are calls to
     // libm's `fmaxf`/`fminf`, ~30 instructions per hit pixel) nor `clamp` (NaN would
     // propagate): a NaN fails both tests and takes the 0.3 floor, exactly as
-    // `n_z.max(0.3).min(1.0)` did.
+    // `n_z.max(0.3).min(1.0)` does (tested below).
     let k = if n_z > 1.0 {
         1.0
     } else if n_z >= AMBIENT {
@@ -87,7 +140,7 @@ mod tests {
     fn comparison_clamp_equals_max_min() {
         let c = Rgb888::new(255, 128, 7);
         let check = |n: f32| {
-            // The previous formulation, kept as the oracle (NaN → 0.3, unlike clamp).
+            // The textbook clamp as the oracle (NaN → 0.3 through max/min, unlike clamp).
             #[allow(clippy::manual_clamp)]
             let k = n.max(AMBIENT).min(1.0);
             let expected = Rgb888::new(scale(255.0, k), scale(128.0, k), scale(7.0, k));

@@ -17,7 +17,7 @@
 //!    `r_eff² = r²·(1 + 2⁻¹⁰) + 2⁻¹⁷·|L|²`;
 //! 2. the stepping's rounding: the direction a [`Stepping`](crate::Stepping) produces
 //!    is within `E` of the ideal `F + x·du + y·dv` (bounds per stepping in
-//!    `render.rs`), which turns the ray by at most `2E` (ideal directions have
+//!    `stepping.rs`), which turns the ray by at most `2E` (ideal directions have
 //!    `|d| ≥ d·w ≈ 1`), moving its distance from the centre by at most `2E·|L|`.
 //!
 //! The ellipse coefficients are computed in `f64` once per frame (about a hundred

@@ -85,12 +85,20 @@ fn host<const N: usize>(
 fn host_entries() -> &'static [(String, String, u64, u64)] {
     static HOST: OnceLock<Vec<(String, String, u64, u64)>> = OnceLock::new();
     HOST.get_or_init(|| {
-        let mut entries = host("lab", &scenes::LAB, scenes::LAB_CAMERA);
-        entries.extend(host("far", &scenes::FAR, scenes::FAR_CAMERA));
-        entries.extend(host("grazing", &scenes::GRAZING, scenes::GRAZING_CAMERA));
-        entries.extend(host("drift", &scenes::DRIFT, scenes::DRIFT_CAMERA));
-        entries.extend(host("crowd", &scenes::CROWD, scenes::CROWD_CAMERA));
-        entries
+        struct Host(Vec<(String, String, u64, u64)>);
+        impl scenes::EachScene for Host {
+            fn scene<const N: usize>(
+                &mut self,
+                name: &'static str,
+                scene: &'static Scene<N>,
+                camera: CameraParams,
+            ) {
+                self.0.extend(host(name, scene, camera));
+            }
+        }
+        let mut entries = Host(Vec::new());
+        scenes::for_each(&mut entries);
+        entries.0
     })
 }
 

@@ -4,10 +4,12 @@
 #[path = "../examples/common/scenes.rs"]
 mod scenes;
 
-use embedded_raytracer::{scene_file, CameraParams, Scene};
+mod common;
+
+use embedded_raytracer::{CameraParams, Scene};
 
 fn same<const N: usize>(file: &str, scene: &Scene<N>, camera: CameraParams) {
-    let loaded = scene_file::load::<64>(file).unwrap();
+    let loaded = common::load(file);
     assert_eq!(loaded.scene.spheres(), scene.spheres(), "{file}: spheres differ");
     assert_eq!(
         loaded.scene.background(),
@@ -32,9 +34,20 @@ fn same<const N: usize>(file: &str, scene: &Scene<N>, camera: CameraParams) {
 
 #[test]
 fn compiled_in_scenes_match_the_files() {
-    same("scenes/lab.toml", &scenes::LAB, scenes::LAB_CAMERA);
-    same("scenes/far.toml", &scenes::FAR, scenes::FAR_CAMERA);
-    same("scenes/grazing.toml", &scenes::GRAZING, scenes::GRAZING_CAMERA);
-    same("scenes/drift.toml", &scenes::DRIFT, scenes::DRIFT_CAMERA);
-    same("scenes/crowd.toml", &scenes::CROWD, scenes::CROWD_CAMERA);
+    struct Same(Vec<&'static str>);
+    impl scenes::EachScene for Same {
+        fn scene<const N: usize>(
+            &mut self,
+            name: &'static str,
+            scene: &'static Scene<N>,
+            camera: CameraParams,
+        ) {
+            same(name, scene, camera);
+            self.0.push(name);
+        }
+    }
+    let mut checked = Same(Vec::new());
+    scenes::for_each(&mut checked);
+    // Every standard scene file has its compiled-in copy, in the same order.
+    assert_eq!(checked.0, common::SCENES);
 }

@@ -6,37 +6,34 @@
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
-use embedded_raytracer::{
-    scene_file, Camera, Method, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3,
-};
+use embedded_raytracer::intersect::FD_ANCHOR_INTERVAL;
+use embedded_raytracer::{Camera, Method, Options, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3};
 
-const SCENES: [&str; 5] = ["lab", "crowd", "far", "grazing", "drift"];
+mod common;
+use common::{load, Pixel, SCENES};
 
-fn load(name: &str) -> scene_file::SceneFile<64> {
-    let path = format!("{}/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
-    scene_file::load::<64>(&path).unwrap()
+/// Every pixel of `scene` through `camera` with `method` and the given options.
+fn trace_with<const N: usize>(
+    scene: &Scene<N>,
+    camera: &Camera,
+    method: Method,
+    options: Options,
+) -> Vec<Pixel> {
+    common::trace(
+        Render::new(scene, camera)
+            .with_method(method)
+            .with_options(options),
+    )
 }
 
-/// Everything a pixel is: hit sphere and t (bits), colour, direction (bits).
-type Pixel = (Option<(usize, u32)>, Rgb888, [u32; 3]);
-
+/// With span culling on (the default) or off.
 fn trace<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, culling: bool) -> Vec<Pixel> {
-    let mut out = Vec::new();
-    Render::<N, Rgb888>::new(scene, camera)
-        .with_method(method)
-        .with_span_culling(culling)
-        .trace(|s| {
-            out.push((
-                s.hit.map(|h| (h.index, h.t.to_bits())),
-                s.color,
-                [
-                    s.direction.x.to_bits(),
-                    s.direction.y.to_bits(),
-                    s.direction.z.to_bits(),
-                ],
-            ))
-        });
-    out
+    trace_with(scene, camera, method, Options::DEFAULT.with_span_culling(culling))
+}
+
+/// With anchor interval `k`.
+fn trace_k<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, k: u32) -> Vec<Pixel> {
+    trace_with(scene, camera, method, Options::DEFAULT.with_anchor_interval(k))
 }
 
 /// The methods whose pixels do not depend on where a row's evaluation starts: all but
@@ -204,15 +201,6 @@ fn compare(a: &[Pixel], b: &[Pixel]) -> (usize, usize, u8) {
     (coverage, shade, level)
 }
 
-fn trace_k<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, k: u32) -> Vec<Pixel> {
-    let mut out = Vec::new();
-    Render::<N, Rgb888>::new(scene, camera)
-        .with_method(method)
-        .with_anchor_interval(k)
-        .trace(|s| out.push((s.hit.map(|h| (h.index, h.t.to_bits())), s.color, [0; 3])));
-    out
-}
-
 /// The measurement K is chosen from (prints a table with `--nocapture`): coverage flips
 /// and colour differences of the forward-differenced test against the robust test on
 /// every standard scene, for K = 1 … 8192. The chosen K must be as good as K = 1.
@@ -233,7 +221,7 @@ fn forward_diff_error_against_k() {
         for k in [1, 2, 4, 8, 16, 32, 64, 256, 1024, 8192] {
             let (coverage, shade, level) = compare(&trace_k(&file.scene, &camera, fd, k), &reference);
             println!("{name:8} {k:6} {coverage:9} {shade:7} {level:10}");
-            if k == embedded_raytracer::sphere::FD_ANCHOR_INTERVAL {
+            if k == FD_ANCHOR_INTERVAL {
                 // The chosen K: no more coverage flips than K = 1, colours within one level.
                 assert!(
                     coverage <= at_one.0 && level <= 1,
@@ -262,7 +250,7 @@ fn forward_diff_breaks_without_anchors_on_a_huge_row() {
     let fd = Method::new(Stepping::Direct, SphereTest::ForwardDiff, Sqrt::Exact);
     let robust = Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact);
     let reference = trace_k(&scene, &camera, robust, 1);
-    let k = embedded_raytracer::sphere::FD_ANCHOR_INTERVAL;
+    let k = FD_ANCHOR_INTERVAL;
     let (good, _, _) = compare(&trace_k(&scene, &camera, fd, k), &reference);
     let (bad, _, _) = compare(&trace_k(&scene, &camera, fd, 8192), &reference);
     println!("8192-wide row: K={k} {good} flips, K=8192 {bad} flips");
@@ -271,7 +259,7 @@ fn forward_diff_breaks_without_anchors_on_a_huge_row() {
 }
 
 fn trace_method<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method) -> Vec<Pixel> {
-    trace(scene, camera, method, true)
+    trace_with(scene, camera, method, Options::DEFAULT)
 }
 
 /// `Auto` is forward differences for every sphere whose bound allows it (all of the

@@ -11,8 +11,8 @@ use embedded_raytracer::camera::{MAX_FOV, MIN_PIXEL_SIZE};
 use embedded_raytracer::reference::sweeps::{self, *};
 use embedded_raytracer::reference::{self, intersect, D3};
 use embedded_raytracer::{
-    scene_file, Camera, CameraError, CameraParam, CameraParams, Method, Render, Scene, Sphere, SphereTest,
-    Sqrt, Stepping, Vec3,
+    Camera, CameraError, CameraParam, CameraParams, Method, Render, Scene, Sphere, SphereTest, Sqrt,
+    Stepping, Vec3,
 };
 
 fn m(stepping: Stepping, test: SphereTest, sqrt: Sqrt) -> Method {
@@ -23,9 +23,8 @@ fn direct(test: SphereTest, sqrt: Sqrt) -> Method {
     m(Stepping::Direct, test, sqrt)
 }
 
-fn load(name: &str) -> scene_file::SceneFile<64> {
-    scene_file::load(format!("{}/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"))).unwrap()
-}
+mod common;
+use common::load;
 
 // ---------------------------------------------------------------------------------
 // Distance/radius: a small sphere far away.
@@ -368,7 +367,7 @@ fn touching_and_interpenetrating_spheres() {
         m(Stepping::Direct, SphereTest::Geometric, Sqrt::Exact),
     ] {
         let x = reference::compare(
-            &Render::<64, Rgb888>::new(&f.scene, &f.camera).with_method(method),
+            &Render::<_, Rgb888>::new(&f.scene, &f.camera).with_method(method),
             &truth,
         );
         assert_eq!(x.coverage_errors, 0, "{method}: {x:?}");
@@ -515,7 +514,7 @@ fn fast_sqrt_cost_per_sphere_test() {
         let truth = reference::render(&f.scene, &f.camera);
         let run = |t, q| {
             reference::compare(
-                &Render::<64, Rgb888>::new(&f.scene, &f.camera).with_method(direct(t, q)),
+                &Render::<_, Rgb888>::new(&f.scene, &f.camera).with_method(direct(t, q)),
                 &truth,
             )
         };
@@ -694,7 +693,7 @@ fn standard_scene(name: &str) {
     let truth = reference::render(&f.scene, &f.camera);
     let run = |method| {
         reference::compare(
-            &Render::<64, Rgb888>::new(&f.scene, &f.camera).with_method(method),
+            &Render::<_, Rgb888>::new(&f.scene, &f.camera).with_method(method),
             &truth,
         )
     };

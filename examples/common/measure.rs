@@ -121,6 +121,12 @@ pub struct Run<P: Platform> {
     failures: u32,
 }
 
+impl<P: Platform> scenes::EachScene for Run<P> {
+    fn scene<const N: usize>(&mut self, name: &'static str, scene: &'static Scene<N>, camera: CameraParams) {
+        self.measure_scene(name, scene, camera);
+    }
+}
+
 impl<P: Platform> Run<P> {
     /// Measures the counter's overhead and prints the run's header lines.
     pub fn start(platform: P) -> Self {
@@ -177,14 +183,14 @@ impl<P: Platform> Run<P> {
         }
     }
 
-    /// `math::sqrt_exact` against libm's `sqrtf`, bit for bit (any NaN equals any NaN):
+    /// `math::sqrt_exact` against `libm::sqrtf`, bit for bit (any NaN equals any NaN):
     /// on hard-float ARM the former is the FPU's `VSQRT.F32`.
     pub fn check_sqrt(&mut self) {
         let mut inputs = 0u32;
         let mut mismatches = 0u32;
         let platform = &self.platform;
         let mut check = |x: f32| {
-            let (hw, sw) = (math::sqrt_exact(x), math::sqrt_libm(x));
+            let (hw, sw) = (math::sqrt_exact(x), libm::sqrtf(x));
             if hw.to_bits() != sw.to_bits() && !(hw.is_nan() && sw.is_nan()) {
                 if mismatches < 5 {
                     platform.print(format_args!(
@@ -240,7 +246,7 @@ impl<P: Platform> Run<P> {
     }
 
     /// Every method on one scene at 240×240: hash, pixels, instructions, stack.
-    pub fn scene<const N: usize>(&mut self, name: &str, scene: &Scene<N>, params: CameraParams) {
+    pub fn measure_scene<const N: usize>(&mut self, name: &str, scene: &Scene<N>, params: CameraParams) {
         let camera = match (CameraParams { size: SIZE, ..params }).build() {
             Ok(camera) => camera,
             Err(e) => {
@@ -287,11 +293,7 @@ impl<P: Platform> Run<P> {
 
     /// Every standard scene (`examples/common/scenes.rs`), every method.
     pub fn every_scene(&mut self) {
-        self.scene("lab", &scenes::LAB, scenes::LAB_CAMERA);
-        self.scene("far", &scenes::FAR, scenes::FAR_CAMERA);
-        self.scene("grazing", &scenes::GRAZING, scenes::GRAZING_CAMERA);
-        self.scene("drift", &scenes::DRIFT, scenes::DRIFT_CAMERA);
-        self.scene("crowd", &scenes::CROWD, scenes::CROWD_CAMERA);
+        scenes::for_each(self);
     }
 
     /// Prints the verdict and exits QEMU with it.

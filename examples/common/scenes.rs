@@ -184,3 +184,20 @@ pub const CROWD_CAMERA: CameraParams = camera(
     60.0,
     [320, 240],
 );
+
+/// Work done on each standard scene, whatever its sphere capacity.
+pub trait EachScene {
+    /// Called once per standard scene with its name (the file's stem), the scene and
+    /// its camera.
+    fn scene<const N: usize>(&mut self, name: &'static str, scene: &'static Scene<N>, camera: CameraParams);
+}
+
+/// Calls `work` on every standard scene, in the order of every table (the order of
+/// `examples/common/standard.rs`' `SCENES`).
+pub fn for_each(work: &mut impl EachScene) {
+    work.scene("lab", &LAB, LAB_CAMERA);
+    work.scene("far", &FAR, FAR_CAMERA);
+    work.scene("grazing", &GRAZING, GRAZING_CAMERA);
+    work.scene("drift", &DRIFT, DRIFT_CAMERA);
+    work.scene("crowd", &CROWD, CROWD_CAMERA);
+}

@@ -1,0 +1,135 @@
+//! Per-frame set-up: which part of the image is visible, and each object's per-frame
+//! constants — geometry ([`SphereGeom`]), the sphere test's own constants
+//! ([`TestStrategy::Consts`]), the shader's ([`Shader::Object`]) and the silhouette
+//! that span culling cuts per row ([`Silhouette`]) — all built in one pass.
+//!
+//! [`render`] is what the one dispatch (`dispatch.rs`) calls with the method's
+//! strategy types: set up the frame here, then hand it to the scanline loop
+//! (`scanline.rs`).
+
+use embedded_graphics::pixelcolor::Rgb888;
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use heapless::Vec;
+
+use crate::camera::Camera;
+use crate::intersect::{RowGeometry, SphereGeom, TestStrategy};
+use crate::math::SqrtFn;
+use crate::render::Options;
+use crate::scanline;
+use crate::scene::Scene;
+use crate::shade::Shader;
+use crate::sink::RowSink;
+use crate::span::Silhouette;
+use crate::stepping::Stepper;
+
+/// A sphere as the frame sees it.
+///
+/// `repr(C)` with the geometry first: the tests load `L` at offset 0 of the element,
+/// where one `VLDM` fetches two of its components.
+#[repr(C)]
+pub(crate) struct FrameSphere<T: TestStrategy, Sh: Shader> {
+    /// Geometry relative to the eye.
+    pub geom: SphereGeom,
+    /// The sphere test's per-frame constants.
+    pub test: T::Consts,
+    /// The shader's per-frame constants.
+    pub shade: Sh::Object,
+    /// Where on the image its rays can hit it.
+    pub silhouette: Silhouette,
+}
+
+/// Per-frame state: the visible part of the image and each sphere's constants.
+pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
+    pub camera: &'a Camera,
+    pub spheres: &'a [FrameSphere<T, Sh>],
+    pub background: Rgb888,
+    /// Visible columns `i0..i1` and rows `j0..j1` of the image.
+    pub i0: u32,
+    pub i1: u32,
+    pub j0: u32,
+    pub j1: u32,
+    /// Where the image's upper-left pixel sits on the target.
+    pub offset: Point,
+}
+
+/// Renders one frame with the strategy types the dispatch chose: stepping `S`, sphere
+/// test `T`, square root `Q`, shader `Sh`.
+pub(crate) fn render<const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader>(
+    scene: &Scene<N>,
+    camera: &Camera,
+    options: Options,
+    clip: Rectangle,
+    offset: Point,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    // The per-frame sphere data lives here and the frame borrows it: built in place
+    // once, never moved (a by-value `Frame` holding the `Vec` would be copied on
+    // return, doubling the render's stack).
+    let mut spheres = Vec::new();
+    let Some(frame) = Frame::<T, Sh>::new::<N, S>(scene, camera, options, clip, offset, &mut spheres) else {
+        return Ok(()); // nothing visible
+    };
+    scanline::draw_rows::<N, K, S, T, Q, Sh>(&frame, sink)
+}
+
+impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
+    /// Clips the image (placed at `offset`) to `clip` and builds every sphere's
+    /// per-frame constants into `spheres`; `None` if nothing is visible.
+    fn new<const N: usize, S: Stepper>(
+        scene: &Scene<N>,
+        camera: &'a Camera,
+        options: Options,
+        clip: Rectangle,
+        offset: Point,
+        spheres: &'a mut Vec<FrameSphere<T, Sh>, N>,
+    ) -> Option<Self> {
+        let size = camera.size();
+        // Clip in i64: no overflow for any offset or target size.
+        let span = |origin: i32, len: u32, clip_origin: i32, clip_len: u32| {
+            let lo = i64::from(origin).max(i64::from(clip_origin));
+            let hi = (i64::from(origin) + i64::from(len)).min(i64::from(clip_origin) + i64::from(clip_len));
+            (lo < hi).then(|| ((lo - i64::from(origin)) as u32, (hi - i64::from(origin)) as u32))
+        };
+        let (i0, i1) = span(offset.x, size.width, clip.top_left.x, clip.size.width)?;
+        let (j0, j1) = span(offset.y, size.height, clip.top_left.y, clip.size.height)?;
+        // How far the stepping's directions can be from the ideal ones (widens the spans).
+        let step_err = S::error_bound(camera);
+        let eye = camera.eye();
+        let w = camera.w();
+        let row = RowGeometry {
+            du: camera.pixel_step(),
+            anchor: options.anchor_interval,
+            pixel_width: camera.pixel_width(),
+        };
+        // A push loop, not `collect()`: heapless' `FromIterator` panics on overflow, and
+        // the optimiser cannot see that a `Scene<N>` never holds more than N spheres.
+        spheres.clear();
+        for s in scene.spheres() {
+            // Per-sphere constants and silhouette, once per frame.
+            let geom = SphereGeom::new(s.center, s.radius, eye);
+            let silhouette = if options.span_culling {
+                Silhouette::new(geom.l, s.radius, camera, T::MARGIN, step_err)
+            } else {
+                Silhouette::All
+            };
+            // Never fails: the scene holds at most N spheres.
+            let _ = spheres.push(FrameSphere {
+                geom,
+                test: T::consts(&geom, &row),
+                shade: Sh::object(s, &geom, w),
+                silhouette,
+            });
+        }
+        Some(Self {
+            camera,
+            spheres,
+            background: scene.background(),
+            i0,
+            i1,
+            j0,
+            j1,
+            offset,
+        })
+    }
+}

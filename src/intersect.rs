@@ -1,0 +1,466 @@
+//! The ray–sphere tests as strategy types, one per [`SphereTest`](crate::SphereTest)
+//! choice, over a sphere's per-frame geometry `SphereGeom`.
+//!
+//! Every test works with the ray `r(t) = eye + t·d` for an **unnormalised** direction
+//! `d` (so `a = d·d` is general, and the fast square root never has to normalise a
+//! ray), `L = centre − eye` and `c = |L|² − r²` computed once per frame, and returns the
+//! nearest root with `0 < t < t_max`: the entry point, or the exit point when the eye
+//! is inside the sphere. A tangent ray (discriminant exactly 0) is a hit; every NaN or
+//! infinity that rounding could produce fails the `0 < t < t_max` comparison, so no
+//! NaN leaves a test.
+//!
+//! A test may keep per-frame constants of its own (`TestStrategy::Consts`, e.g. the
+//! forward differences' column step) and per-row state (`TestStrategy::State`); a
+//! test that needs neither pays for neither.
+
+use crate::math::{SqrtFn, EDGE_TOLERANCE, UNIT_ROUNDOFF};
+use crate::span::Margin;
+use crate::vec3::Vec3;
+
+/// A sphere's per-frame geometry relative to the ray origin (the eye, for primary
+/// rays). Built once per frame so the per-pixel tests only multiply and add.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SphereGeom {
+    /// `L = centre − origin`.
+    pub l: Vec3,
+    /// `|L|²`.
+    pub l2: f32,
+    /// `r²`.
+    pub r2: f32,
+    /// `c = |L|² − r²` (negative: the origin is inside).
+    pub c: f32,
+}
+
+impl SphereGeom {
+    /// The geometry of the sphere (`center`, `radius`) seen from `origin`.
+    #[inline(always)]
+    pub(crate) fn new(center: Vec3, radius: f32, origin: Vec3) -> Self {
+        let l = center - origin;
+        let l2 = l.dot(l);
+        let r2 = radius * radius;
+        Self {
+            l,
+            l2,
+            r2,
+            c: l2 - r2,
+        }
+    }
+}
+
+/// What a test may need of the frame for its per-sphere constants.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RowGeometry {
+    /// The column step `du` of the ray direction.
+    pub du: Vec3,
+    /// The forward differences' anchor interval K (≥ 1).
+    pub anchor: u32,
+    /// The pixel width on the image plane.
+    pub pixel_width: f32,
+}
+
+/// A ray–sphere test as a strategy type: the render loop and the single-ray queries are
+/// monomorphised over it.
+pub(crate) trait TestStrategy {
+    /// Per-frame, per-sphere constants beyond the geometry.
+    type Consts: Copy;
+    /// Per-row, per-sphere state.
+    type State: Copy;
+    /// How far the test's rounding can widen its hit set (span culling's margin).
+    const MARGIN: Margin;
+    /// The per-frame constants of one sphere.
+    fn consts(g: &SphereGeom, row: &RowGeometry) -> Self::Consts;
+    /// One ray on its own: nearest root `0 < t < t_max` of `origin + t·d`, `a = d·d`.
+    fn ray<Q: SqrtFn>(g: &SphereGeom, d: Vec3, a: f32, t_max: f32) -> Option<f32>;
+    /// The state at the start of a span `[lo, hi)`.
+    fn row_start(lo: u32) -> Self::State;
+    /// Within a row: nearest root for column `i` with direction `d`. Columns come in
+    /// increasing steps of one within a sphere's span; the span starts at `lo`.
+    fn hit<Q: SqrtFn>(
+        st: &mut Self::State,
+        g: &SphereGeom,
+        c: &Self::Consts,
+        d: Vec3,
+        a: f32,
+        i: u32,
+        t_max: f32,
+    ) -> Option<f32>;
+}
+
+/// The nearer of two roots `t0 ≤ t1` that lies in `(0, t_max)`. NaN fails every
+/// comparison, so it never comes out.
+#[inline(always)]
+fn nearest(t0: f32, t1: f32, t_max: f32) -> Option<f32> {
+    let t = if t0 > 0.0 { t0 } else { t1 };
+    if t > 0.0 && t < t_max {
+        Some(t)
+    } else {
+        None
+    }
+}
+
+/// A test with no constants and no row state: the row loop calls the single-ray test.
+macro_rules! stateless {
+    ($($t:ty => $margin:expr),+) => {$(
+        impl TestStrategy for $t {
+            type Consts = ();
+            type State = ();
+            const MARGIN: Margin = $margin;
+            #[inline(always)]
+            fn consts(_g: &SphereGeom, _row: &RowGeometry) {}
+            #[inline(always)]
+            fn ray<Q: SqrtFn>(g: &SphereGeom, d: Vec3, a: f32, t_max: f32) -> Option<f32> {
+                Self::test::<Q>(g, d, a, t_max)
+            }
+            #[inline(always)]
+            fn row_start(_lo: u32) {}
+            #[inline(always)]
+            fn hit<Q: SqrtFn>(_st: &mut (), g: &SphereGeom, _c: &(), d: Vec3, a: f32, _i: u32, t_max: f32) -> Option<f32> {
+                Self::test::<Q>(g, d, a, t_max)
+            }
+        }
+    )+};
+}
+
+/// [`SphereTest::Algebraic`](crate::SphereTest::Algebraic): the slides' quadratic.
+pub(crate) struct Algebraic;
+/// [`SphereTest::Geometric`](crate::SphereTest::Geometric): the slides' `t_ca`/`d²`.
+pub(crate) struct Geometric;
+/// [`SphereTest::Robust`](crate::SphereTest::Robust): Haines et al.
+pub(crate) struct Robust;
+
+stateless!(
+    Algebraic => Margin::Quadratic,
+    Geometric => Margin::Quadratic,
+    Robust => Margin::Linear
+);
+
+impl Algebraic {
+    #[inline(always)]
+    fn test<Q: SqrtFn>(s: &SphereGeom, d: Vec3, a: f32, t_max: f32) -> Option<f32> {
+        // Compute quadratic sphere coefficients (origin − centre = −L).
+        let b = -2.0 * d.dot(s.l);
+        let disc = b * b - 4.0 * a * s.c;
+        if disc < 0.0 {
+            return None;
+        }
+        let root = Q::sqrt(disc);
+        let two_a = 2.0 * a;
+        nearest((-b - root) / two_a, (-b + root) / two_a, t_max)
+    }
+}
+
+impl Geometric {
+    #[inline(always)]
+    fn test<Q: SqrtFn>(s: &SphereGeom, d: Vec3, a: f32, t_max: f32) -> Option<f32> {
+        // Normalise the ray: t_ca is measured along the unit direction.
+        let len = Q::sqrt(a);
+        let t_ca = d.dot(s.l) / len;
+        // A sphere behind an origin that is outside it cannot be hit.
+        if t_ca < 0.0 && s.c > 0.0 {
+            return None;
+        }
+        // Squared distance from the centre to the ray, by Pythagoras.
+        let d2 = s.l2 - t_ca * t_ca;
+        if d2 > s.r2 {
+            return None;
+        }
+        let t_hc = Q::sqrt(s.r2 - d2);
+        // Distances along the unit ray, back to the parameter of `d`.
+        nearest((t_ca - t_hc) / len, (t_ca + t_hc) / len, t_max)
+    }
+}
+
+impl Robust {
+    #[inline(always)]
+    fn test<Q: SqrtFn>(s: &SphereGeom, d: Vec3, a: f32, t_max: f32) -> Option<f32> {
+        let b = d.dot(s.l);
+        // Discriminant from the perpendicular from the centre to the ray (no cancellation).
+        let perp = s.l - d * (b / a);
+        let disc = s.r2 - perp.dot(perp);
+        if disc < 0.0 {
+            return None;
+        }
+        stable_roots(s, b, Q::sqrt(a * disc), a, t_max)
+    }
+}
+
+/// The nearer of the stable roots of `a t² − 2b t + c = 0` given `root = √(b² − ac)`:
+/// `q = b + sign(b)·root` has no `b − root` cancellation, and the roots are `c/q` and
+/// `q/a` (Haines et al.). Shared by the robust and the forward-differenced tests.
+#[inline(always)]
+fn stable_roots(s: &SphereGeom, b: f32, root: f32, a: f32, t_max: f32) -> Option<f32> {
+    let q = if b >= 0.0 { b + root } else { b - root };
+    let (t_near, t_far) = if b >= 0.0 {
+        (s.c / q, q / a)
+    } else {
+        (q / a, s.c / q)
+    };
+    nearest(t_near, t_far, t_max)
+}
+
+/// [`SphereTest::ForwardDiff`](crate::SphereTest::ForwardDiff): the forward-differenced
+/// scanline test.
+///
+/// Along a scanline the direction is linear in the column, `d(i) = d₀ + i·du`, so with
+/// `X = L × d` (linear too):
+/// - `b(i) = L·d` is linear: `b += L·du`;
+/// - the discriminant `disc(i) = a·r² − |X|²` (= `a·(r² − |perp|²)`, the robust
+///   test's discriminant times `a`, no `|L|² − t²` cancellation) is a quadratic:
+///   `disc += Δ`, `Δ += 2(r²·du·du − |X₁|²)`.
+///
+/// Three additions per sphere and pixel and a comparison; the square root only where
+/// `disc ≥ 0`, then the robust stable roots `q = b ± √disc`, `t = c/q`, `q/a`.
+/// `b`, `disc` and `Δ` are **anchored** (evaluated directly from the stepped direction)
+/// at each span start and every `K` columns ([`FD_ANCHOR_INTERVAL`]).
+///
+/// **Error bound.** After `m < K` steps from an anchor, the additions' rounding gives
+/// `|disc_fd − disc| ≤ 2⁻²³·m·(D + m·Δmax)` on top of the direct evaluation's, with
+/// `D ≈ a·r²` the discriminant's range and `Δmax ≈ 2r²/R` its largest step (`R` the
+/// sphere's radius on screen in pixels). Divided by the edge slope `≈ 2r²/R` this moves
+/// a silhouette edge by at most `2⁻²⁴·K·(R + 2K)` pixels: `< 0.001` px for K = 16 at
+/// R = 320, but several pixels for an unanchored 8192-wide row (tested).
+pub(crate) struct ForwardDiff;
+
+/// [`SphereTest::Auto`](crate::SphereTest::Auto): per sphere and frame, [`ForwardDiff`]
+/// or [`Robust`] by [`auto_uses_forward_diff`].
+pub(crate) struct Auto;
+
+/// The anchor interval K of the forward-differenced test
+/// ([`SphereTest::ForwardDiff`](crate::SphereTest::ForwardDiff)): direct re-evaluation
+/// every K columns.
+///
+/// Chosen from the measurement `cargo test --test speed forward_diff_error_against_k
+/// -- --nocapture` (forward differences against the robust test, incremental stepping,
+/// exact root): for every K from 1 to 8192 and every standard scene there is no
+/// coverage flip and no colour more than one level off; the number of one-level
+/// differences grows with K (crowd: 1 at K = 1, 27 at K = 16, 37 from K = 32 on; drift
+/// 480×270: 1, 7, 20, 103 at K = 1, 16, 32, 1024) while the anchor's cost (≈ 25
+/// operations) is already < 2 per pixel at K = 16. K = 16 keeps those differences to a
+/// few dozen pixels per frame.
+pub const FD_ANCHOR_INTERVAL: u32 = 16;
+
+/// The forward differences' per-frame constants of one sphere.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FdConsts {
+    /// The pixel step `du`,
+    du: Vec3,
+    /// `X₁ = L × du`, the per-column change of `X = L × d`,
+    x1: Vec3,
+    /// `L·du`, the per-column change of `b = L·d`,
+    ldu: f32,
+    /// `r²·(du·du)` and `|X₁|²`,
+    r2_uu: f32,
+    x1x1: f32,
+    /// the constant second difference of the discriminant, `2(r²·du·du − |X₁|²)`,
+    dd2: f32,
+    /// the anchor interval K (re-evaluate directly every K columns),
+    anchor: u32,
+    /// and [`Auto`]'s per-frame choice: forward differences (`true`) or robust.
+    use_fd: bool,
+}
+
+impl FdConsts {
+    #[inline(always)]
+    fn new(g: &SphereGeom, row: &RowGeometry) -> Self {
+        let du = row.du;
+        let x1 = g.l.cross(du);
+        let x1x1 = x1.dot(x1);
+        let r2_uu = g.r2 * du.dot(du);
+        let anchor = row.anchor.max(1);
+        Self {
+            du,
+            x1,
+            ldu: g.l.dot(du),
+            r2_uu,
+            x1x1,
+            dd2: 2.0 * (r2_uu - x1x1),
+            anchor,
+            use_fd: auto_uses_forward_diff(g.c, g.r2, row.pixel_width, anchor),
+        }
+    }
+}
+
+/// [`Auto`]'s rule for one sphere and frame: forward differences when their error bound
+/// ([`ForwardDiff`]) moves a silhouette edge by at most [`EDGE_TOLERANCE`] (1/16 pixel),
+/// i.e. `2⁻²⁴·K·(R + 2K) ≤ 1/16` with `R = r/(√(|L|² − r²)·pw)` the sphere's radius on
+/// screen in pixels; the robust test otherwise — and always when the eye is inside (or
+/// on) the sphere, where `R` is unbounded.
+///
+/// Why these two candidates: forward differences cost three additions per sphere and
+/// pixel and are as well conditioned as the robust test (perpendicular distance via
+/// `L × d`, no `|L|² − t²` cancellation), so no slides' test is cheaper *and*
+/// sufficient: the algebraic and geometric tests cost a dot product and more per pixel
+/// and fail from distance/radius 178 (measured).
+#[must_use]
+pub(crate) fn auto_uses_forward_diff(c: f32, r2: f32, pw: f32, k: u32) -> bool {
+    if !(c > 0.0) {
+        return false;
+    }
+    // Radius on screen in pixels (tangent-cone half-angle over the pixel angle at the
+    // image centre). Assumption: off-axis in a wide field of view a sphere covers up to
+    // 1/cos²θ more pixels than this, so there the 1/16 px promise holds only for the
+    // centre-equivalent radius (not yet taken from the frame's ellipse).
+    let r_px = crate::math::sqrt_exact(r2 / c) / pw;
+    let k = k as f32;
+    // One rounding (2⁻²⁴) per forward-difference step, relative to the disc's range.
+    UNIT_ROUNDOFF * k * (r_px + 2.0 * k) <= EDGE_TOLERANCE
+}
+
+/// Per-row forward-differencing state of one sphere.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FdState {
+    /// Column of the next direct evaluation.
+    next: u32,
+    /// `b = L·d`, `disc = a·r² − |L × d|²` and `Δ = disc(i+1) − disc(i)` at the current column.
+    b: f32,
+    disc: f32,
+    delta: f32,
+}
+
+impl ForwardDiff {
+    /// Direct evaluation of `b = L·d` and `disc = a·r² − |X|²` with `X = L × d`.
+    #[inline(always)]
+    fn direct(s: &SphereGeom, d: Vec3, a: f32) -> (f32, f32, Vec3) {
+        let b = d.dot(s.l);
+        let x = s.l.cross(d);
+        let disc = a * s.r2 - x.dot(x);
+        (b, disc, x)
+    }
+
+    /// Anchor: `b`, `disc` and `Δ` evaluated directly for direction `d` (`a = d·d`).
+    #[inline(always)]
+    fn anchor(s: &SphereGeom, c: &FdConsts, d: Vec3, a: f32, i: u32) -> FdState {
+        let (b, disc, x) = Self::direct(s, d, a);
+        // disc(i+1) − disc(i) = r²·(2 d·du + du·du) − (2 X·X₁ + |X₁|²).
+        let da = 2.0 * d.dot(c.du);
+        let delta = (s.r2 * da + c.r2_uu) - (2.0 * x.dot(c.x1) + c.x1x1);
+        FdState {
+            next: i.saturating_add(c.anchor),
+            b,
+            disc,
+            delta,
+        }
+    }
+
+    /// The robust stable roots from `b` and `disc = a·(r² − |perp|²)`.
+    #[inline(always)]
+    fn roots<Q: SqrtFn>(s: &SphereGeom, b: f32, disc: f32, a: f32, t_max: f32) -> Option<f32> {
+        if disc < 0.0 {
+            return None;
+        }
+        stable_roots(s, b, Q::sqrt(disc), a, t_max)
+    }
+}
+
+impl TestStrategy for ForwardDiff {
+    type Consts = FdConsts;
+    type State = FdState;
+    const MARGIN: Margin = Margin::Linear;
+
+    #[inline(always)]
+    fn consts(g: &SphereGeom, row: &RowGeometry) -> FdConsts {
+        FdConsts::new(g, row)
+    }
+
+    /// One ray is an anchor: the forward-differenced test evaluated directly.
+    #[inline(always)]
+    fn ray<Q: SqrtFn>(g: &SphereGeom, d: Vec3, a: f32, t_max: f32) -> Option<f32> {
+        let (b, disc, _) = Self::direct(g, d, a);
+        Self::roots::<Q>(g, b, disc, a, t_max)
+    }
+
+    #[inline(always)]
+    fn row_start(lo: u32) -> FdState {
+        FdState {
+            next: lo,
+            b: 0.0,
+            disc: 0.0,
+            delta: 0.0,
+        }
+    }
+
+    #[inline(always)]
+    fn hit<Q: SqrtFn>(
+        st: &mut FdState,
+        g: &SphereGeom,
+        c: &FdConsts,
+        d: Vec3,
+        a: f32,
+        i: u32,
+        t_max: f32,
+    ) -> Option<f32> {
+        if i >= st.next {
+            // Re-anchor: direct evaluation, next one K columns on.
+            *st = Self::anchor(g, c, d, a, i);
+        } else {
+            // Forward differences: b linear, disc quadratic.
+            st.b += c.ldu;
+            st.disc += st.delta;
+            st.delta += c.dd2;
+        }
+        Self::roots::<Q>(g, st.b, st.disc, a, t_max)
+    }
+}
+
+impl TestStrategy for Auto {
+    type Consts = FdConsts;
+    type State = FdState;
+    const MARGIN: Margin = Margin::Linear;
+
+    #[inline(always)]
+    fn consts(g: &SphereGeom, row: &RowGeometry) -> FdConsts {
+        FdConsts::new(g, row)
+    }
+
+    /// One ray: as [`ForwardDiff`] (an anchor).
+    #[inline(always)]
+    fn ray<Q: SqrtFn>(g: &SphereGeom, d: Vec3, a: f32, t_max: f32) -> Option<f32> {
+        <ForwardDiff as TestStrategy>::ray::<Q>(g, d, a, t_max)
+    }
+
+    #[inline(always)]
+    fn row_start(lo: u32) -> FdState {
+        <ForwardDiff as TestStrategy>::row_start(lo)
+    }
+
+    #[inline(always)]
+    fn hit<Q: SqrtFn>(
+        st: &mut FdState,
+        g: &SphereGeom,
+        c: &FdConsts,
+        d: Vec3,
+        a: f32,
+        i: u32,
+        t_max: f32,
+    ) -> Option<f32> {
+        // A per-frame constant per sphere: the branch is predicted.
+        if c.use_fd {
+            <ForwardDiff as TestStrategy>::hit::<Q>(st, g, c, d, a, i, t_max)
+        } else {
+            Robust::test::<Q>(g, d, a, t_max)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Auto's rule at its edges: the eye inside or on the sphere, and the on-screen
+    /// radius where `2⁻²⁴·K·(R + 2K)` crosses 1/16 px (K = 16: R = 65 504 px).
+    #[test]
+    fn auto_rule_boundaries() {
+        let pw = 1e-3;
+        // R = √(r²/c)/pw: choose c for a given R with r = 1.
+        let c_for = |r_px: f32| 1.0 / (r_px * pw) / (r_px * pw);
+        assert!(auto_uses_forward_diff(c_for(100.0), 1.0, pw, 16));
+        assert!(auto_uses_forward_diff(c_for(65_000.0), 1.0, pw, 16));
+        assert!(!auto_uses_forward_diff(c_for(66_000.0), 1.0, pw, 16));
+        // A longer anchor interval shrinks the range: K = 4096 allows R ≤ 2⁸ − 2K < 0.
+        assert!(!auto_uses_forward_diff(c_for(10.0), 1.0, pw, 4096));
+        // Eye inside (c < 0), on the surface (c = 0), NaN: robust.
+        assert!(!auto_uses_forward_diff(-1.0, 1.0, pw, 16));
+        assert!(!auto_uses_forward_diff(0.0, 1.0, pw, 16));
+        assert!(!auto_uses_forward_diff(f32::NAN, 1.0, pw, 16));
+    }
+}

@@ -1,0 +1,285 @@
+//! The method vocabulary: the axes of the speed/accuracy chart ([`Stepping`],
+//! [`SphereTest`], [`Sqrt`]), their names, parsing and display, and [`Method`], one
+//! point on the chart.
+//!
+//! Each axis is generated from one table by the `axis!` macro below: the enum, its
+//! kebab-case names (CLI flags, scene tooling, the chart's legend), `ALL` in chart
+//! order, `Display` and `FromStr`. Adding a choice is one row here plus its strategy
+//! type (see `ARCHITECTURE.md`); every list of names in the CLI usage, the simulator's
+//! key help, the tables and the chart is read from `NAMES`/`ALL`.
+
+use core::fmt;
+use core::str::FromStr;
+
+/// A method name (`--stepping`, `--sphere-test`, `--sqrt`) that is not one of the choices.
+///
+/// ```
+/// use embedded_raytracer::{ParseMethodError, Sqrt};
+/// let e = "slow".parse::<Sqrt>().unwrap_err();
+/// assert_eq!(e, ParseMethodError { what: "sqrt", expected: Sqrt::NAMES });
+/// assert_eq!(e.to_string(), "unknown sqrt: expected one of exact, fast");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ParseMethodError {
+    /// What was being parsed (`stepping`, `sphere test`, `sqrt`).
+    pub what: &'static str,
+    /// The accepted names, in the axis' order; `Display` joins them with `, `.
+    pub expected: &'static [&'static str],
+}
+
+impl fmt::Display for ParseMethodError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "unknown {}: expected one of ", self.what)?;
+        for (k, name) in self.expected.iter().enumerate() {
+            if k > 0 {
+                f.write_str(", ")?;
+            }
+            f.write_str(name)?;
+        }
+        Ok(())
+    }
+}
+
+impl core::error::Error for ParseMethodError {}
+
+/// One axis of the method from its table: `Variant => "kebab-name"` rows, each with
+/// its doc comment.
+macro_rules! axis {
+    (
+        $(#[$meta:meta])*
+        $ty:ident, $what:literal {
+            $( $(#[$vmeta:meta])* $variant:ident => $name:literal, )+
+        }
+    ) => {
+        $(#[$meta])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum $ty {
+            $( $(#[$vmeta])* $variant, )+
+        }
+
+        impl $ty {
+            /// Every choice, in the order of the chart and the tables.
+            pub const ALL: [$ty; [$($name),+].len()] = [$($ty::$variant),+];
+
+            /// The kebab-case names, in the order of [`Self::ALL`].
+            pub const NAMES: &'static [&'static str] = &[$($name),+];
+
+            /// The kebab-case name used by the CLI.
+            #[must_use]
+            pub const fn name(self) -> &'static str {
+                match self { $($ty::$variant => $name),+ }
+            }
+        }
+
+        impl fmt::Display for $ty {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str(self.name())
+            }
+        }
+
+        impl FromStr for $ty {
+            type Err = ParseMethodError;
+            fn from_str(s: &str) -> Result<Self, Self::Err> {
+                match s {
+                    $($name => Ok($ty::$variant),)+
+                    _ => Err(ParseMethodError { what: $what, expected: Self::NAMES }),
+                }
+            }
+        }
+    };
+}
+
+axis! {
+    /// How the ray direction `p − eye` advances from pixel to pixel (strategy types in
+    /// `stepping.rs`).
+    Stepping, "stepping" {
+        /// The slides' stepping (see the crate docs' terms): the pixel centre `p` is
+        /// stepped in world space (`p += pw·u`, `scanlineStart −= ph·v`) and the ray is
+        /// `p − eye`. Drifts: each add rounds relative to `|p| ≈ |eye|`, so far from the
+        /// origin whole pixels are lost across a wide image (measured by the accuracy
+        /// lab: ≥ 1 px at 1920 wide from `|eye|` = 100, at 4096 wide from `|eye|` = 10;
+        /// 52.9 px on `scenes/drift.toml`).
+        WorldSpace => "world-space",
+        /// Camera-relative: each scanline's first direction is computed directly
+        /// (`p(0,j) − eye`, once per row), then the direction is stepped by `pw·u` per
+        /// pixel. Rounding is relative to `|p − eye| ≈ 1`, independent of where the eye is.
+        Incremental => "incremental",
+        /// Every pixel's direction evaluated directly, `first + j·dv + i·du`: no
+        /// accumulation at all, three multiplies more per pixel.
+        Direct => "direct",
+    }
+}
+
+axis! {
+    /// Which ray–sphere intersection formula the pixel loop uses (strategy types in
+    /// [`intersect`](crate::intersect)).
+    SphereTest, "sphere test" {
+        /// The slides' quadratic (see [`Sphere::intersect_algebraic`](crate::Sphere::intersect_algebraic)).
+        Algebraic => "algebraic",
+        /// The slides' `t_ca`/`d²` construction (see [`Sphere::intersect_geometric`](crate::Sphere::intersect_geometric)).
+        Geometric => "geometric",
+        /// Haines et al.'s robust discriminant and stable roots (see [`Sphere::intersect_robust`](crate::Sphere::intersect_robust)).
+        Robust => "robust",
+        /// The robust test's discriminant `a·r² − |L × d|²` and `b = L·d`
+        /// forward-differenced along each scanline (three additions per sphere and
+        /// pixel), re-anchored by direct evaluation at each span start and every
+        /// [`FD_ANCHOR_INTERVAL`](crate::intersect::FD_ANCHOR_INTERVAL) columns. Error
+        /// bound: a silhouette edge moves by at most `2⁻²⁴·K·(R + 2K)` pixels (`R` the
+        /// sphere's radius on screen in pixels, `K` the anchor interval), on top of the
+        /// robust test's own error. A single-ray query
+        /// ([`Sphere::intersect`](crate::Sphere::intersect)) is an anchor, i.e.
+        /// evaluated directly.
+        ForwardDiff => "forward-diff",
+        /// Adaptive: per sphere and frame, `ForwardDiff` where its error bound moves an
+        /// edge by at most [`EDGE_TOLERANCE`](crate::math::EDGE_TOLERANCE) (1/16 pixel:
+        /// `2⁻²⁴·K·(R + 2K) ≤ 1/16`, the eye outside the sphere), `Robust` otherwise.
+        /// The slides' algebraic and geometric tests are never chosen: they are dearer
+        /// per pixel than forward differences and fail from distance/radius ≈ 100.
+        /// Single-ray queries behave as `ForwardDiff`.
+        Auto => "auto",
+    }
+}
+
+axis! {
+    /// Which square root the pixel loop uses (strategy types in [`math`](crate::math)).
+    Sqrt, "sqrt" {
+        /// Correctly rounded ([`math::sqrt_exact`](crate::math::sqrt_exact)).
+        Exact => "exact",
+        /// micromath's approximation, ≤ +6.07 % ([`math::sqrt_fast`](crate::math::sqrt_fast)).
+        Fast => "fast",
+    }
+}
+
+/// A point on the speed/accuracy chart: stepping × sphere test × square root.
+///
+/// The default is `Direct` + `Auto` + `Exact`, chosen from the speed/accuracy chart
+/// (`docs/speed_vs_accuracy.md`): direct evaluation of each direction has no
+/// accumulated rounding (zero coverage errors against the f64 reference on every
+/// standard scene, where incremental stepping loses 14 edge pixels on the 1920-wide
+/// `drift` scene) and, with span culling, costs its three multiplies only where a
+/// sphere can be hit; `Auto` takes the forward-differenced test where its error bound
+/// allows (every sphere of the standard scenes), which is on the Pareto front; the
+/// exact root keeps shading within one level of the reference.
+///
+/// ```
+/// use embedded_raytracer::{Method, SphereTest, Stepping, Sqrt};
+/// let m = Method::default();
+/// assert_eq!((m.stepping, m.sphere_test, m.sqrt), (Stepping::Direct, SphereTest::Auto, Sqrt::Exact));
+/// assert_eq!("world-space".parse::<Stepping>(), Ok(Stepping::WorldSpace));
+/// assert_eq!("forward-diff".parse::<SphereTest>(), Ok(SphereTest::ForwardDiff));
+/// assert_eq!(m.to_string(), "direct/auto/exact");
+/// assert_eq!("direct/auto/exact".parse::<Method>(), Ok(m));
+/// assert_eq!(Method::ALL.len(), 30);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Method {
+    /// Ray stepping.
+    pub stepping: Stepping,
+    /// Ray–sphere test.
+    pub sphere_test: SphereTest,
+    /// Square root.
+    pub sqrt: Sqrt,
+}
+
+/// How many methods there are: the product of the axes' sizes.
+const METHOD_COUNT: usize = Stepping::ALL.len() * SphereTest::ALL.len() * Sqrt::ALL.len();
+
+impl Method {
+    /// The default method (see the type's docs).
+    pub const DEFAULT: Method = Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact);
+
+    /// The seed taken literally: world-space stepping, the quadratic, exact root.
+    pub const LITERAL: Method = Method::new(Stepping::WorldSpace, SphereTest::Algebraic, Sqrt::Exact);
+
+    /// A method from its three choices.
+    #[must_use]
+    pub const fn new(stepping: Stepping, sphere_test: SphereTest, sqrt: Sqrt) -> Self {
+        Self {
+            stepping,
+            sphere_test,
+            sqrt,
+        }
+    }
+
+    /// Every combination, for charts and sweeps: stepping-major, then sphere test,
+    /// then square root, each in its axis' `ALL` order.
+    // Indexing in a const initialiser is checked at compile time.
+    #[allow(clippy::indexing_slicing)]
+    pub const ALL: [Method; METHOD_COUNT] = {
+        let (nt, nq) = (SphereTest::ALL.len(), Sqrt::ALL.len());
+        let mut all = [Method::DEFAULT; METHOD_COUNT];
+        let mut k = 0;
+        while k < METHOD_COUNT {
+            all[k] = Method::new(
+                Stepping::ALL[k / (nt * nq)],
+                SphereTest::ALL[(k / nq) % nt],
+                Sqrt::ALL[k % nq],
+            );
+            k += 1;
+        }
+        all
+    };
+}
+
+impl Default for Method {
+    fn default() -> Self {
+        Method::DEFAULT
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}/{}/{}", self.stepping, self.sphere_test, self.sqrt)
+    }
+}
+
+/// `stepping/sphere-test/sqrt`, as `Display` writes it.
+impl FromStr for Method {
+    type Err = ParseMethodError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let mut parts = s.split('/');
+        let (Some(stepping), Some(test), Some(sqrt), None) =
+            (parts.next(), parts.next(), parts.next(), parts.next())
+        else {
+            return Err(ParseMethodError {
+                what: "method (stepping/sphere-test/sqrt)",
+                expected: &["e.g. direct/auto/exact"],
+            });
+        };
+        Ok(Method::new(stepping.parse()?, test.parse()?, sqrt.parse()?))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::string::ToString;
+
+    /// `ALL` is the full product, every method once, and names round-trip.
+    #[test]
+    fn all_methods_once_and_names_round_trip() {
+        for (k, a) in Method::ALL.iter().enumerate() {
+            for b in &Method::ALL[k + 1..] {
+                assert_ne!(a, b);
+            }
+        }
+        for m in Method::ALL {
+            assert_eq!(m.to_string().parse::<Method>(), Ok(m));
+        }
+        for (s, name) in Stepping::ALL.iter().zip(Stepping::NAMES) {
+            assert_eq!(s.name(), *name);
+        }
+        assert_eq!(
+            "direct/auto".parse::<Method>().unwrap_err().what,
+            "method (stepping/sphere-test/sqrt)"
+        );
+        assert_eq!(
+            "direct/nope/exact".parse::<Method>(),
+            Err(ParseMethodError {
+                what: "sphere test",
+                expected: SphereTest::NAMES
+            })
+        );
+    }
+}

@@ -1,0 +1,151 @@
+//! The scanline loop: per row, cut every sphere's silhouette with the scanline (the
+//! row's active spheres and their spans), then trace the row's pixels — form the ray,
+//! find the closest hit among the active spheres, shade — as the sink pulls them.
+//!
+//! This is the only per-pixel code of the renderer. It adds, compares and calls the
+//! strategy types; everything it reads was computed once per frame (`frame.rs`) or
+//! once per row (here, before the pixel iterator starts).
+
+use core::marker::PhantomData;
+
+use embedded_graphics::pixelcolor::Rgb888;
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use heapless::Vec;
+
+use crate::frame::{Frame, FrameSphere};
+use crate::intersect::TestStrategy;
+use crate::math::SqrtFn;
+use crate::render::Sample;
+use crate::scene::Hit;
+use crate::shade::Shader;
+use crate::sink::RowSink;
+use crate::stepping::{RowStep, Stepper};
+use crate::vec3::Vec3;
+
+/// Draws the frame's visible rows into the sink, one row (one iterator) at a time.
+pub(crate) fn draw_rows<const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader>(
+    frame: &Frame<'_, T, Sh>,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    let mut stepper = S::new(frame.camera);
+    let width = frame.i1 - frame.i0;
+    let mut active: Vec<Active<'_, T, Sh>, N> = Vec::new();
+    for j in frame.j0..frame.j1 {
+        let row_step = stepper.start_row(j, frame.i0);
+        // Per row: the spheres whose span meets this row, and the union of the spans.
+        active.clear();
+        let (mut lo_all, mut hi_all) = (frame.i1, frame.i0);
+        for (index, fs) in frame.spheres.iter().enumerate() {
+            if let Some((lo, hi)) = fs.silhouette.row_span(j, frame.i0, frame.i1) {
+                lo_all = lo_all.min(lo);
+                hi_all = hi_all.max(hi);
+                // Cannot fail: at most N spheres.
+                let _ = active.push(Active {
+                    index,
+                    lo,
+                    hi,
+                    sphere: fs,
+                    state: T::row_start(lo),
+                });
+            }
+        }
+        // Visible rows and columns fit in the target's i32 coordinates.
+        let area = Rectangle::new(
+            Point::new(
+                frame.offset.x.wrapping_add(frame.i0 as i32),
+                frame.offset.y.wrapping_add(j as i32),
+            ),
+            Size::new(width, 1),
+        );
+        let row = RowPixels::<S, T, Q, Sh> {
+            stepper: row_step,
+            active: &mut active,
+            lo_all,
+            hi_all,
+            w: frame.camera.w(),
+            background: frame.background,
+            i: frame.i0,
+            end: frame.i1,
+            j,
+            sqrt: PhantomData,
+        };
+        sink.row(area, row)?;
+    }
+    Ok(())
+}
+
+/// A sphere whose span meets the current row.
+struct Active<'s, T: TestStrategy, Sh: Shader> {
+    /// Index in the scene.
+    index: usize,
+    /// Columns `[lo, hi)` whose rays can hit it.
+    lo: u32,
+    hi: u32,
+    sphere: &'s FrameSphere<T, Sh>,
+    /// The test's per-row state (forward differences).
+    state: T::State,
+}
+
+/// The pixels of one scanline, traced as the sink pulls them.
+struct RowPixels<'r, 's, S: Stepper, T: TestStrategy, Q, Sh: Shader> {
+    stepper: S::Row,
+    active: &'r mut [Active<'s, T, Sh>],
+    /// Union of the active spans: outside it a pixel is background without a test.
+    lo_all: u32,
+    hi_all: u32,
+    w: Vec3,
+    background: Rgb888,
+    i: u32,
+    end: u32,
+    j: u32,
+    sqrt: PhantomData<Q>,
+}
+
+impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> Iterator for RowPixels<'_, '_, S, T, Q, Sh> {
+    type Item = Sample;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<Sample> {
+        let i = self.i;
+        if i >= self.end {
+            return None;
+        }
+        let pixel = Point::new(i as i32, self.j as i32);
+        self.i += 1;
+        // Form the ray from the eye through the pixel centre.
+        let d = self.stepper.next_direction();
+        let mut best: Option<(usize, f32, &FrameSphere<T, Sh>)> = None;
+        if i >= self.lo_all && i < self.hi_all {
+            let a = d.dot(d);
+            // Closest hit over the spheres whose span holds this column, in scene order;
+            // each test gets the nearest t so far as its t_max.
+            let mut t_max = f32::INFINITY;
+            for act in self.active.iter_mut() {
+                if i >= act.lo && i < act.hi {
+                    let s = act.sphere;
+                    if let Some(t) = T::hit::<Q>(&mut act.state, &s.geom, &s.test, d, a, i, t_max) {
+                        t_max = t;
+                        best = Some((act.index, t, s));
+                    }
+                }
+            }
+        }
+        // Shade the closest hit; background where there is none.
+        let (hit, color) = match best {
+            Some((index, t, s)) => (Some(Hit { index, t }), Sh::shade(&s.shade, self.w, d, t)),
+            None => (None, self.background),
+        };
+        Some(Sample {
+            pixel,
+            direction: d,
+            hit,
+            color,
+        })
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let n = (self.end - self.i) as usize;
+        (n, Some(n))
+    }
+}

@@ -82,13 +82,14 @@ fn sink_only(target: &mut PixelHash) {
     }
 }
 
-/// Instructions executed by `f` (minus the measurement's own `overhead` ticks).
+/// Counter ticks across `f`, never inlined so that every measurement (the empty one
+/// that gives the overhead included) reads the counter through the same code.
 #[inline(never)]
-fn timed<P: Platform>(platform: &P, overhead: u64, f: impl FnOnce()) -> u64 {
+fn elapsed<P: Platform>(platform: &P, f: impl FnOnce()) -> u64 {
     let t0 = platform.ticks();
     f();
     let t1 = platform.ticks();
-    platform.instructions((t1 - t0).saturating_sub(overhead))
+    t1 - t0
 }
 
 /// Peak stack bytes `f` uses below this function's stack pointer, or `None` if it
@@ -116,7 +117,7 @@ fn ipp10(instructions: u64, pixels: u64) -> u64 {
 /// One firmware run: its platform, the counter's own cost and the failures so far.
 pub struct Run<P: Platform> {
     pub platform: P,
-    /// Ticks of an empty `timed` measurement.
+    /// Ticks of an empty measurement.
     overhead: u64,
     failures: u32,
 }
@@ -130,11 +131,8 @@ impl<P: Platform> scenes::EachScene for Run<P> {
 impl<P: Platform> Run<P> {
     /// Measures the counter's overhead and prints the run's header lines.
     pub fn start(platform: P) -> Self {
-        let overhead = {
-            let t0 = platform.ticks();
-            let t1 = platform.ticks();
-            t1 - t0
-        };
+        // The counter's own cost: an empty measurement.
+        let overhead = elapsed(&platform, || {});
         platform.print(format_args!(
             "{}: every standard scene at {}x{} (its own camera, size replaced), every method",
             platform.name(),
@@ -158,7 +156,8 @@ impl<P: Platform> Run<P> {
 
     /// Instructions executed by `f`, measured like a render.
     pub fn timed(&self, f: impl FnOnce()) -> u64 {
-        timed(&self.platform, self.overhead, f)
+        let ticks = elapsed(&self.platform, f);
+        self.platform.instructions(ticks.saturating_sub(self.overhead))
     }
 
     /// Checks the tick-to-instruction conversion on a loop of `2n` instructions:

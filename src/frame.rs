@@ -85,10 +85,14 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         spheres: &'a mut Vec<FrameSphere<T, Sh>, N>,
     ) -> Option<Self> {
         let size = camera.size();
-        // Clip in i64: no overflow for any offset or target size.
+        // Clip in i64: no overflow for any offset or target size. A target whose box
+        // reaches past `i32::MAX` is clipped at the last coordinate that exists, so no
+        // row wraps around and no row's area runs past `i32::MAX`.
         let span = |origin: i32, len: u32, clip_origin: i32, clip_len: u32| {
             let lo = i64::from(origin).max(i64::from(clip_origin));
-            let hi = (i64::from(origin) + i64::from(len)).min(i64::from(clip_origin) + i64::from(clip_len));
+            let hi = (i64::from(origin) + i64::from(len))
+                .min(i64::from(clip_origin) + i64::from(clip_len))
+                .min(i64::from(i32::MAX) + 1);
             (lo < hi).then(|| ((lo - i64::from(origin)) as u32, (hi - i64::from(origin)) as u32))
         };
         let (i0, i1) = span(offset.x, size.width, clip.top_left.x, clip.size.width)?;

@@ -13,6 +13,8 @@
 //! forward differences' column step) and per-row state (`TestStrategy::State`); a
 //! test that needs neither pays for neither.
 
+use core::num::NonZeroU32;
+
 use crate::math::{SqrtFn, EDGE_TOLERANCE, UNIT_ROUNDOFF};
 use crate::span::Margin;
 use crate::vec3::Vec3;
@@ -71,8 +73,19 @@ pub(crate) trait TestStrategy {
     fn consts(g: &SphereGeom, row: &RowGeometry) -> Self::Consts;
     /// One ray on its own: nearest root `0 < t < t_max` of `origin + t·d`, `a = d·d`.
     fn ray<Q: SqrtFn>(g: &SphereGeom, d: Vec3, a: f32, t_max: f32) -> Option<f32>;
-    /// The state at the start of a span `[lo, hi)`.
-    fn row_start(lo: u32) -> Self::State;
+    /// The state for a row whose span starts at column `span_lo` of the *whole* image
+    /// and whose first evaluated column is `first` (> `span_lo` where the render is
+    /// clipped on the left). `dir_at(i)` is the stepping's direction at column `i` of
+    /// this row, exactly as a whole render computes it. A test with row state must
+    /// leave it as a whole render would have it before column `first`, so that a pixel
+    /// never depends on the clip.
+    fn row_start(
+        g: &SphereGeom,
+        c: &Self::Consts,
+        span_lo: u32,
+        first: u32,
+        dir_at: impl FnMut(u32) -> Vec3,
+    ) -> Self::State;
     /// Within a row: nearest root for column `i` with direction `d`. Columns come in
     /// increasing steps of one within a sphere's span; the span starts at `lo`.
     fn hit<Q: SqrtFn>(
@@ -112,7 +125,7 @@ macro_rules! stateless {
                 Self::test::<Q>(g, d, a, t_max)
             }
             #[inline(always)]
-            fn row_start(_lo: u32) {}
+            fn row_start(_g: &SphereGeom, _c: &(), _span_lo: u32, _first: u32, _dir_at: impl FnMut(u32) -> Vec3) {}
             #[inline(always)]
             fn hit<Q: SqrtFn>(_st: &mut (), g: &SphereGeom, _c: &(), d: Vec3, a: f32, _i: u32, t_max: f32) -> Option<f32> {
                 Self::test::<Q>(g, d, a, t_max)
@@ -211,7 +224,10 @@ fn stable_roots(s: &SphereGeom, b: f32, root: f32, a: f32, t_max: f32) -> Option
 /// Three additions per sphere and pixel and a comparison; the square root only where
 /// `disc ≥ 0`, then the robust stable roots `q = b ± √disc`, `t = c/q`, `q/a`.
 /// `b`, `disc` and `Δ` are **anchored** (evaluated directly from the stepped direction)
-/// at each span start and every `K` columns ([`FD_ANCHOR_INTERVAL`]).
+/// at each span start and every `K` columns after it ([`FD_ANCHOR_INTERVAL`]). The span
+/// start is the whole image's, not the visible part's: a render clipped on the left
+/// replays the anchor before its first column and the differences up to it, so every
+/// pixel is the whole render's, bit for bit.
 ///
 /// **Error bound.** After `m < K` steps from an anchor, the additions' rounding gives
 /// `|disc_fd − disc| ≤ 2⁻²³·m·(D + m·Δmax)` on top of the direct evaluation's, with
@@ -253,8 +269,9 @@ pub(crate) struct FdConsts {
     x1x1: f32,
     /// the constant second difference of the discriminant, `2(r²·du·du − |X₁|²)`,
     dd2: f32,
-    /// the anchor interval K (re-evaluate directly every K columns),
-    anchor: u32,
+    /// the anchor interval K (re-evaluate directly every K columns; non-zero, so the
+    /// division by it has no panic path),
+    anchor: NonZeroU32,
     /// and [`Auto`]'s per-frame choice: forward differences (`true`) or robust.
     use_fd: bool,
 }
@@ -266,7 +283,7 @@ impl FdConsts {
         let x1 = g.l.cross(du);
         let x1x1 = x1.dot(x1);
         let r2_uu = g.r2 * du.dot(du);
-        let anchor = row.anchor.max(1);
+        let anchor = NonZeroU32::new(row.anchor).unwrap_or(NonZeroU32::MIN);
         Self {
             du,
             x1,
@@ -275,7 +292,7 @@ impl FdConsts {
             x1x1,
             dd2: 2.0 * (r2_uu - x1x1),
             anchor,
-            use_fd: auto_uses_forward_diff(g.c, g.r2, row.pixel_width, anchor),
+            use_fd: auto_uses_forward_diff(g.c, g.r2, row.pixel_width, anchor.get()),
         }
     }
 }
@@ -335,11 +352,50 @@ impl ForwardDiff {
         let da = 2.0 * d.dot(c.du);
         let delta = (s.r2 * da + c.r2_uu) - (2.0 * x.dot(c.x1) + c.x1x1);
         FdState {
-            next: i.saturating_add(c.anchor),
+            next: i.saturating_add(c.anchor.get()),
             b,
             disc,
             delta,
         }
+    }
+
+    /// A state that anchors at column `next` (before any evaluation).
+    #[inline(always)]
+    fn lazy(next: u32) -> FdState {
+        FdState {
+            next,
+            b: 0.0,
+            disc: 0.0,
+            delta: 0.0,
+        }
+    }
+
+    /// The state a whole render has before column `first`: the anchor at column `p`
+    /// (direction `dir_at(p)`), then the differences up to `first − 1`. Only renders clipped on
+    /// the left get here, so it stays out of line (and off the pixel loop's stack).
+    #[cold]
+    #[inline(never)]
+    fn replay(
+        g: &SphereGeom,
+        c: &FdConsts,
+        p: u32,
+        first: u32,
+        mut dir_at: impl FnMut(u32) -> Vec3,
+    ) -> FdState {
+        let d = dir_at(p);
+        let mut st = Self::anchor(g, c, d, d.dot(d), p);
+        for _ in p + 1..first {
+            Self::step(&mut st, c);
+        }
+        st
+    }
+
+    /// One column on: `b` linear, `disc` quadratic.
+    #[inline(always)]
+    fn step(st: &mut FdState, c: &FdConsts) {
+        st.b += c.ldu;
+        st.disc += st.delta;
+        st.delta += c.dd2;
     }
 
     /// The robust stable roots from `b` and `disc = a·(r² − |perp|²)`.
@@ -369,13 +425,23 @@ impl TestStrategy for ForwardDiff {
         Self::roots::<Q>(g, b, disc, a, t_max)
     }
 
-    #[inline(always)]
-    fn row_start(lo: u32) -> FdState {
-        FdState {
-            next: lo,
-            b: 0.0,
-            disc: 0.0,
-            delta: 0.0,
+    fn row_start(
+        g: &SphereGeom,
+        c: &FdConsts,
+        span_lo: u32,
+        first: u32,
+        dir_at: impl FnMut(u32) -> Vec3,
+    ) -> FdState {
+        // The anchor a whole render would use last before `first`: the span start, or
+        // a multiple of K after it.
+        let anchor = first
+            .checked_sub(span_lo)
+            .map(|gap| span_lo + gap / c.anchor * c.anchor.get())
+            .filter(|&p| p < first);
+        match anchor {
+            Some(p) => Self::replay(g, c, p, first, dir_at),
+            // The next column evaluated is an anchor: evaluate it there.
+            None => Self::lazy(first.max(span_lo)),
         }
     }
 
@@ -393,10 +459,7 @@ impl TestStrategy for ForwardDiff {
             // Re-anchor: direct evaluation, next one K columns on.
             *st = Self::anchor(g, c, d, a, i);
         } else {
-            // Forward differences: b linear, disc quadratic.
-            st.b += c.ldu;
-            st.disc += st.delta;
-            st.delta += c.dd2;
+            Self::step(st, c);
         }
         Self::roots::<Q>(g, st.b, st.disc, a, t_max)
     }
@@ -418,9 +481,19 @@ impl TestStrategy for Auto {
         <ForwardDiff as TestStrategy>::ray::<Q>(g, d, a, t_max)
     }
 
-    #[inline(always)]
-    fn row_start(lo: u32) -> FdState {
-        <ForwardDiff as TestStrategy>::row_start(lo)
+    fn row_start(
+        g: &SphereGeom,
+        c: &FdConsts,
+        span_lo: u32,
+        first: u32,
+        dir_at: impl FnMut(u32) -> Vec3,
+    ) -> FdState {
+        if c.use_fd {
+            <ForwardDiff as TestStrategy>::row_start(g, c, span_lo, first, dir_at)
+        } else {
+            // The robust test keeps no state.
+            ForwardDiff::lazy(first)
+        }
     }
 
     #[inline(always)]

@@ -33,23 +33,7 @@ pub(crate) fn draw_rows<const N: usize, K: RowSink, S: Stepper, T: TestStrategy,
     let mut active: Vec<Active<'_, T, Sh>, N> = Vec::new();
     for j in frame.j0..frame.j1 {
         let row_step = stepper.start_row(j, frame.i0);
-        // Per row: the spheres whose span meets this row, and the union of the spans.
-        active.clear();
-        let (mut lo_all, mut hi_all) = (frame.i1, frame.i0);
-        for (index, fs) in frame.spheres.iter().enumerate() {
-            if let Some((lo, hi)) = fs.silhouette.row_span(j, frame.i0, frame.i1) {
-                lo_all = lo_all.min(lo);
-                hi_all = hi_all.max(hi);
-                // Cannot fail: at most N spheres.
-                let _ = active.push(Active {
-                    index,
-                    lo,
-                    hi,
-                    sphere: fs,
-                    state: T::row_start(lo),
-                });
-            }
-        }
+        let (lo_all, hi_all) = activate(frame, &mut stepper, j, &mut active);
         // Visible rows and columns fit in the target's i32 coordinates.
         let area = Rectangle::new(
             Point::new(
@@ -73,6 +57,48 @@ pub(crate) fn draw_rows<const N: usize, K: RowSink, S: Stepper, T: TestStrategy,
         sink.row(area, row)?;
     }
     Ok(())
+}
+
+/// Per row: the spheres whose span meets row `j` (into `active`, in scene order), each
+/// with its test's row state, and the union `[lo_all, hi_all)` of their visible spans.
+///
+/// Out of line: its locals are dead before the row's pixels are traced, so they do not
+/// add to the pixel loop's stack.
+#[inline(never)]
+fn activate<'s, const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
+    frame: &Frame<'s, T, Sh>,
+    stepper: &mut S,
+    j: u32,
+    active: &mut Vec<Active<'s, T, Sh>, N>,
+) -> (u32, u32) {
+    active.clear();
+    let image_width = frame.camera.size().width;
+    let (mut lo_all, mut hi_all) = (frame.i1, frame.i0);
+    for (index, fs) in frame.spheres.iter().enumerate() {
+        // The span in the whole image (where a test's row state starts, whatever the
+        // clip), then its visible part.
+        let Some((span_lo, span_hi)) = fs.silhouette.row_span(j, 0, image_width) else {
+            continue;
+        };
+        let (lo, hi) = (span_lo.max(frame.i0), span_hi.min(frame.i1));
+        if lo >= hi {
+            continue;
+        }
+        lo_all = lo_all.min(lo);
+        hi_all = hi_all.max(hi);
+        let state = T::row_start(&fs.geom, &fs.test, span_lo, lo, |i| {
+            stepper.start_row(j, i).next_direction()
+        });
+        // Cannot fail: at most N spheres.
+        let _ = active.push(Active {
+            index,
+            lo,
+            hi,
+            sphere: fs,
+            state,
+        });
+    }
+    (lo_all, hi_all)
 }
 
 /// A sphere whose span meets the current row.

@@ -250,3 +250,54 @@ fn trace_sees_what_draw_draws() {
     });
     assert_eq!(count, 24 * 16);
 }
+
+/// A target whose bounding box reaches past `i32::MAX` on both axes (a display placed
+/// at the far end of the coordinate space): the render clamps the clip to coordinates
+/// that exist, so no row wraps to `i32::MIN` and no row's area runs past `i32::MAX`;
+/// the pixels it draws are the whole render's.
+#[test]
+fn targets_reaching_past_i32_max_are_clipped_to_representable_coordinates() {
+    struct Edge {
+        area: Rectangle,
+        pixels: Vec<(i64, i64, Rgb888)>,
+    }
+    impl Dimensions for Edge {
+        fn bounding_box(&self) -> Rectangle {
+            self.area
+        }
+    }
+    impl DrawTarget for Edge {
+        type Color = Rgb888;
+        type Error = core::convert::Infallible;
+        fn draw_iter<I: IntoIterator<Item = Pixel<Rgb888>>>(&mut self, _: I) -> Result<(), Self::Error> {
+            panic!("the render sends rows through fill_contiguous");
+        }
+        fn fill_contiguous<I: IntoIterator<Item = Rgb888>>(&mut self, area: &Rectangle, colors: I) -> Result<(), Self::Error> {
+            // The area's far corner in i64: it must not pass i32::MAX.
+            let (x0, y0) = (i64::from(area.top_left.x), i64::from(area.top_left.y));
+            let (w, h) = (i64::from(area.size.width), i64::from(area.size.height));
+            assert!(x0 + w - 1 <= i64::from(i32::MAX) && y0 + h - 1 <= i64::from(i32::MAX), "{area:?}");
+            let mut colors = colors.into_iter();
+            for y in y0..y0 + h {
+                for x in x0..x0 + w {
+                    self.pixels.push((x, y, colors.next().unwrap()));
+                }
+            }
+            Ok(())
+        }
+    }
+    let cam = camera();
+    let full = render_rgb888(Method::DEFAULT);
+    let corner = Point::new(i32::MAX - 5, i32::MAX - 3);
+    let mut target = Edge {
+        area: Rectangle::new(corner, Size::new(100, 100)),
+        pixels: Vec::new(),
+    };
+    Render::new(&SCENE, &cam).with_offset(corner).draw(&mut target).unwrap();
+    // Columns MAX−5 … MAX and rows MAX−3 … MAX exist: 6 × 4 pixels.
+    assert_eq!(target.pixels.len(), 6 * 4);
+    for (x, y, c) in target.pixels {
+        let p = Point::new((x - i64::from(corner.x)) as i32, (y - i64::from(corner.y)) as i32);
+        assert_eq!(Some(c), full.get_pixel(p), "at {p:?}");
+    }
+}

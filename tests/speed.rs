@@ -10,7 +10,7 @@ use embedded_raytracer::intersect::FD_ANCHOR_INTERVAL;
 use embedded_raytracer::{Camera, Method, Options, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3};
 
 mod common;
-use common::{load, Pixel, SCENES};
+use common::{load, random_case, shrink, Rng, Traced, SCENES};
 
 /// Every pixel of `scene` through `camera` with `method` and the given options.
 fn trace_with<const N: usize>(
@@ -18,7 +18,7 @@ fn trace_with<const N: usize>(
     camera: &Camera,
     method: Method,
     options: Options,
-) -> Vec<Pixel> {
+) -> Vec<Traced> {
     common::trace(
         Render::new(scene, camera)
             .with_method(method)
@@ -27,12 +27,12 @@ fn trace_with<const N: usize>(
 }
 
 /// With span culling on (the default) or off.
-fn trace<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, culling: bool) -> Vec<Pixel> {
+fn trace<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, culling: bool) -> Vec<Traced> {
     trace_with(scene, camera, method, Options::DEFAULT.with_span_culling(culling))
 }
 
 /// With anchor interval `k`.
-fn trace_k<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, k: u32) -> Vec<Pixel> {
+fn trace_k<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, k: u32) -> Vec<Traced> {
     trace_with(scene, camera, method, Options::DEFAULT.with_anchor_interval(k))
 }
 
@@ -40,16 +40,6 @@ fn trace_k<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, k:
 /// the forward-differenced ones (their anchors sit at the span starts by design).
 fn span_invariant(m: &Method) -> bool {
     !matches!(m.sphere_test, SphereTest::ForwardDiff | SphereTest::Auto)
-}
-
-/// A smaller camera with the same view (the big `drift` image would take minutes in a
-/// debug build), keeping the pixel pitch large enough that the world-space drift stays.
-fn shrink(camera: &Camera, width: u32, height: u32) -> Camera {
-    let mut p = *camera.params();
-    let scale = width as f32 / p.size.width as f32;
-    p.fov_y = 2.0 * ((p.fov_y / 2.0).tan() * (height as f32 / p.size.height as f32) / scale * scale).atan();
-    p.size = Size::new(width, height);
-    p.build().unwrap()
 }
 
 #[test]
@@ -70,80 +60,6 @@ fn culling_changes_no_pixel_on_the_standard_scenes() {
             assert_eq!(diff, 0, "{name} {method}: {diff} pixels changed by culling");
         }
     }
-}
-
-/// xorshift64*: deterministic, no dependency.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f32 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32) / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.next()
-    }
-    fn vec(&mut self, s: f32) -> Vec3 {
-        Vec3::new(self.range(-s, s), self.range(-s, s), self.range(-s, s))
-    }
-}
-
-/// A random scene around a random camera: spheres in front, behind, crossing the
-/// plane through the eye, containing the eye, far and tiny, huge and near.
-fn random_case(rng: &mut Rng) -> (Scene<12>, Camera) {
-    let spread = if rng.next() < 0.3 { 2000.0 } else { 5.0 };
-    let eye = rng.vec(spread);
-    let look = eye + rng.vec(1.0) + Vec3::new(0.0, 0.0, -0.5);
-    let fov = if rng.next() < 0.2 {
-        rng.range(0.001, 0.05)
-    } else {
-        rng.range(0.3, 2.8)
-    };
-    let size = Size::new(rng.range(8.0, 72.0) as u32, rng.range(8.0, 56.0) as u32);
-    let camera = Camera::new(eye, look, Vec3::new(0.0, 1.0, 0.0), fov, size)
-        .or_else(|_| Camera::new(eye, look, Vec3::new(1.0, 0.0, 0.0), fov, size))
-        .unwrap();
-    let w = camera.w();
-    let mut scene = Scene::new(Rgb888::new(1, 2, 3));
-    for k in 0..12 {
-        let color = Rgb888::new(40 + 17 * k as u8, 255 - 13 * k as u8, 90);
-        let sphere = match k % 6 {
-            // In front, on or near the view axis, at a random distance/radius.
-            0 | 1 => {
-                let dist = rng.range(1.5, 50.0);
-                let dir = w + camera.u() * rng.range(-0.8, 0.8) + camera.v() * rng.range(-0.6, 0.6);
-                let r = dist * rng.range(0.001, 0.4);
-                Sphere::new(eye + dir * dist, r, color)
-            }
-            // Behind the eye.
-            2 => Sphere::new(
-                eye - w * rng.range(1.0, 10.0) + rng.vec(1.0),
-                rng.range(0.2, 2.0),
-                color,
-            ),
-            // Crossing the plane through the eye parallel to the image.
-            3 => Sphere::new(
-                eye + camera.u() * rng.range(-3.0, 3.0) + w * rng.range(-0.5, 0.5),
-                rng.range(0.5, 4.0),
-                color,
-            ),
-            // Containing the eye (sometimes only just).
-            4 => {
-                let r = rng.range(0.5, 30.0);
-                Sphere::new(eye + rng.vec(1.0) * (r * rng.range(0.0, 0.57)), r, color)
-            }
-            // Far and tiny (distance/radius up to 1e5) in the field of view.
-            _ => {
-                let dist = rng.range(10.0, 5000.0);
-                let dir =
-                    w + camera.u() * rng.range(-0.01, 0.01) * fov + camera.v() * rng.range(-0.01, 0.01) * fov;
-                Sphere::new(eye + dir * dist, dist * rng.range(1e-5, 1e-2), color)
-            }
-        };
-        scene.push(sphere).unwrap();
-    }
-    (scene, camera)
 }
 
 #[test]
@@ -178,7 +94,7 @@ fn culling_changes_no_pixel_on_random_scenes() {
 }
 
 /// Pixels whose hit/miss differs, and pixels whose colour differs, between two traces.
-fn compare(a: &[Pixel], b: &[Pixel]) -> (usize, usize, u8) {
+fn compare(a: &[Traced], b: &[Traced]) -> (usize, usize, u8) {
     let coverage = a
         .iter()
         .zip(b)
@@ -258,7 +174,7 @@ fn forward_diff_breaks_without_anchors_on_a_huge_row() {
     assert!(bad > good, "K = 8192 should break: {bad}");
 }
 
-fn trace_method<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method) -> Vec<Pixel> {
+fn trace_method<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method) -> Vec<Traced> {
     trace_with(scene, camera, method, Options::DEFAULT)
 }
 
@@ -349,7 +265,8 @@ fn default_method_matches_robust_within_one_level() {
 }
 
 /// A clipped draw (the image placed partly off the target) gives exactly the pixels of
-/// the full render where they are visible, with culling and forward differences.
+/// the full render where they are visible, with culling and forward differences
+/// (`tests/clip.rs` does this for every method on random scenes).
 #[test]
 fn clipped_draw_matches_the_full_render() {
     use embedded_graphics::mock_display::MockDisplay;
@@ -372,21 +289,9 @@ fn clipped_draw_matches_the_full_render() {
         for (k, p) in full.iter().enumerate() {
             let at = Point::new((k % 60) as i32, (k / 60) as i32) + offset;
             if at.x >= 0 && at.y >= 0 && at.x < 64 && at.y < 64 {
-                // Forward differences anchor at the first visible column, so they may
-                // differ by rounding; the others must match exactly.
-                let got = display.get_pixel(at).unwrap();
-                if matches!(method.sphere_test, SphereTest::ForwardDiff | SphereTest::Auto) {
-                    let d = |a: u8, b: u8| a.abs_diff(b);
-                    assert!(
-                        d(got.r(), p.1.r())
-                            .max(d(got.g(), p.1.g()))
-                            .max(d(got.b(), p.1.b()))
-                            <= 1,
-                        "{method} at {at:?}"
-                    );
-                } else {
-                    assert_eq!(got, p.1, "{method} at {at:?}");
-                }
+                // Every method, forward differences included (their anchors sit at
+                // the whole image's span starts), matches exactly.
+                assert_eq!(display.get_pixel(at), Some(p.1), "{method} at {at:?}");
                 checked += 1;
             }
         }

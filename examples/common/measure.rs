@@ -9,8 +9,8 @@
 //! ```
 //!
 //! - `instr`: instructions executed by the render, from the platform's counter minus
-//!   the cost of reading it twice. Each run first checks the counter on loops of known
-//!   length (`calibration` lines).
+//!   what an empty measurement counts. Each run first checks the counter on loops of
+//!   known length (`calibration` lines).
 //! - `stack`: bytes of stack below the caller's stack pointer that the render touched
 //!   (the stack is painted before and scanned after), measured in a second, untimed
 //!   render with the counter's interrupt (if any) off, so no exception frame lands on

@@ -144,19 +144,17 @@ impl QemuOutput {
         Ok(out)
     }
 
+    /// Instructions per tick of the counter, rounded up: 1 for an instruction counter.
+    pub fn instructions_per_tick(&self) -> u64 {
+        self.clock_hz
+            .map_or(1, |hz| 1_000_000_000_u64.div_ceil(hz.max(1)))
+    }
+
     /// The entry for `scene` and `method`, if printed.
     pub fn get(&self, scene: &str, method: &str) -> Option<&Entry> {
         self.entries
             .iter()
             .find(|e| e.scene == scene && e.method == method)
-    }
-}
-
-impl QemuOutput {
-    /// Instructions per tick of the counter, rounded up: 1 for an instruction counter.
-    pub fn instructions_per_tick(&self) -> u64 {
-        self.clock_hz
-            .map_or(1, |hz| 1_000_000_000_u64.div_ceil(hz.max(1)))
     }
 }
 

@@ -76,6 +76,10 @@ pub(crate) fn render<const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q:
 impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
     /// Clips the image (placed at `offset`) to `clip` and builds every sphere's
     /// per-frame constants into `spheres`; `None` if nothing is visible.
+    ///
+    /// Out of line: its temporaries (the f64 silhouette computations) are dead before
+    /// the scanline loop starts, so they do not add to the pixel loop's stack.
+    #[inline(never)]
     fn new<const N: usize, S: Stepper>(
         scene: &Scene<N>,
         camera: &'a Camera,
@@ -117,10 +121,19 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
             } else {
                 Silhouette::All
             };
+            // The silhouette's size on the image, for a test whose choices depend on it
+            // (Auto), computed only by such a test: the culling ellipse's (an upper
+            // bound), or where that is unbounded (culling off, or a stepping margin too
+            // large to cull with) the sphere's own, without the stepping margin.
+            let extent = || {
+                silhouette
+                    .extent()
+                    .or_else(|| Silhouette::new(geom.l, s.radius, camera, T::MARGIN, 0.0).extent())
+            };
             // Never fails: the scene holds at most N spheres.
             let _ = spheres.push(FrameSphere {
                 geom,
-                test: T::consts(&geom, &row),
+                test: T::consts(&geom, &row, extent),
                 shade: Sh::object(s, &geom, w),
                 silhouette,
             });

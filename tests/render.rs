@@ -272,11 +272,18 @@ fn targets_reaching_past_i32_max_are_clipped_to_representable_coordinates() {
         fn draw_iter<I: IntoIterator<Item = Pixel<Rgb888>>>(&mut self, _: I) -> Result<(), Self::Error> {
             panic!("the render sends rows through fill_contiguous");
         }
-        fn fill_contiguous<I: IntoIterator<Item = Rgb888>>(&mut self, area: &Rectangle, colors: I) -> Result<(), Self::Error> {
+        fn fill_contiguous<I: IntoIterator<Item = Rgb888>>(
+            &mut self,
+            area: &Rectangle,
+            colors: I,
+        ) -> Result<(), Self::Error> {
             // The area's far corner in i64: it must not pass i32::MAX.
             let (x0, y0) = (i64::from(area.top_left.x), i64::from(area.top_left.y));
             let (w, h) = (i64::from(area.size.width), i64::from(area.size.height));
-            assert!(x0 + w - 1 <= i64::from(i32::MAX) && y0 + h - 1 <= i64::from(i32::MAX), "{area:?}");
+            assert!(
+                x0 + w - 1 <= i64::from(i32::MAX) && y0 + h - 1 <= i64::from(i32::MAX),
+                "{area:?}"
+            );
             let mut colors = colors.into_iter();
             for y in y0..y0 + h {
                 for x in x0..x0 + w {
@@ -293,7 +300,10 @@ fn targets_reaching_past_i32_max_are_clipped_to_representable_coordinates() {
         area: Rectangle::new(corner, Size::new(100, 100)),
         pixels: Vec::new(),
     };
-    Render::new(&SCENE, &cam).with_offset(corner).draw(&mut target).unwrap();
+    Render::new(&SCENE, &cam)
+        .with_offset(corner)
+        .draw(&mut target)
+        .unwrap();
     // Columns MAX−5 … MAX and rows MAX−3 … MAX exist: 6 × 4 pixels.
     assert_eq!(target.pixels.len(), 6 * 4);
     for (x, y, c) in target.pixels {

@@ -31,7 +31,7 @@ fn case(case: u64) -> Option<(Scene<4>, Camera)> {
     let size = Size::new(rng.range(8.0, 160.0) as u32, rng.range(8.0, 120.0) as u32);
     let eye = rng.vec(50.0);
     let mut params = CameraParams::new(eye, eye + rng.vec(1.0), rng.vec(1.0), fov_y, size);
-    if mode >= 0.4 && mode < 0.7 {
+    if (0.4..0.7).contains(&mode) {
         params = params.with_fov_x(rng.range(115.0, 179.0).to_radians());
     } else if rng.next() < 0.3 {
         params = params.with_fov_x(rng.range(0.5, 179.0).to_radians());

@@ -34,18 +34,75 @@ pub(crate) struct SphereGeom {
 }
 
 impl SphereGeom {
-    /// The geometry of the sphere (`center`, `radius`) seen from `origin`.
+    /// The geometry of the sphere (`center`, `radius`) seen from `origin`, in units
+    /// scaled by the power of two `scale` ([`Scale`]).
     #[inline(always)]
-    pub(crate) fn new(center: Vec3, radius: f32, origin: Vec3) -> Self {
-        let l = center - origin;
+    pub(crate) fn new(center: Vec3, radius: f32, origin: Vec3, scale: Scale) -> Self {
+        let l = (center - origin) * scale.0;
+        let r = radius * scale.0;
         let l2 = l.dot(l);
-        let r2 = radius * radius;
+        let r2 = r * r;
         Self {
             l,
             l2,
             r2,
             c: l2 - r2,
         }
+    }
+}
+
+/// The power of two a frame's (or a query's) eye-relative lengths are multiplied by
+/// before any product is formed, so that no square overflows or loses its precision to
+/// subnormals: `1` while the largest eye-relative coordinate or radius `m` is within
+/// `[2⁻⁴⁰, 2⁴⁰]` (every square and product of the tests then stays far inside the
+/// `f32` range), otherwise the power of two that brings `m` into `[1, 2)`.
+///
+/// Multiplying by a power of two is exact, and every test, the silhouettes and the
+/// shading are homogeneous in these lengths (a hit's `t` scales with them, `n·(−w)` not
+/// at all), so a scaled frame computes exactly the numbers an unscaled one would have,
+/// times powers of two: the same pixels, bit for bit, for any scene whose magnitudes
+/// `f32` can hold, and no cost per pixel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Scale(pub f32);
+
+impl Scale {
+    /// The scale for the largest eye-relative coordinate or radius `m`.
+    pub(crate) fn for_magnitude(m: f32) -> Self {
+        const LO: f32 = 1.0 / 1_099_511_627_776.0; // 2⁻⁴⁰
+        const HI: f32 = 1_099_511_627_776.0; // 2⁴⁰
+        if (LO..=HI).contains(&m) || !m.is_finite() {
+            return Scale(1.0);
+        }
+        // m = 2^e · 1.f; the scale is 2^−e, with e kept where 2^−e is a normal f32.
+        let e = ((m.to_bits() >> 23) & 0xff) as i32 - 127;
+        let e = e.clamp(-126, 126);
+        Scale(f32::from_bits(((127 - e) as u32) << 23))
+    }
+
+    /// The scale for spheres seen from `origin`. Once per frame: out of line and
+    /// optimised for size (`cold`), not unrolled.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn for_spheres<'s>(
+        spheres: impl IntoIterator<Item = &'s crate::sphere::Sphere>,
+        origin: Vec3,
+    ) -> Self {
+        let mut m = 0.0f32;
+        for s in spheres {
+            // Comparisons pass NaN over: a NaN sphere never decides the scale.
+            for x in [(s.center - origin).max_abs(), s.radius.abs()] {
+                if x > m {
+                    m = x;
+                }
+            }
+        }
+        Self::for_magnitude(m)
+    }
+
+    /// A ray parameter in scaled units back in the caller's: exact (a power of two).
+    #[inline(always)]
+    pub(crate) fn unscale_t(self, t: f32) -> f32 {
+        t / self.0
     }
 }
 

@@ -19,7 +19,7 @@
 //! the k-th `region LABEL…` line of the firmware's output. Prints one line per region:
 //!
 //! ```text
-//! estimate LABEL… instr 4029333 cycles 6012345 refills 123 ldst 1 branch 2 divsqrt 3 fp 4 int 5 cond_extra 6 it_fold 7 store_buffer 8 divides 9
+//! estimate LABEL… instr 4029322 cycles 6039012 refills 153622 ldst 1704855 branch 520903 divsqrt 609266 fp 1241162 int 1962826 cond_extra 0 it_fold 68745 store_buffer 38159 divides 0 fetch_bytes … code_bytes … code_lines …
 //! ```
 //!
 //! A label holding `expected N` is a calibration loop: its estimate must be exactly `N`
@@ -227,7 +227,8 @@ fn format_counts(c: &Counts) -> String {
         .map(|(k, v)| format!("{} {v}", k.key()))
         .collect();
     format!(
-        "instr {} cycles {} refills {} {} cond_extra {} it_fold {} store_buffer {} divides {}",
+        "instr {} cycles {} refills {} {} cond_extra {} it_fold {} store_buffer {} divides {} \
+         fetch_bytes {} code_bytes {} code_lines {}",
         c.instructions,
         c.cycles,
         c.refills,
@@ -235,7 +236,10 @@ fn format_counts(c: &Counts) -> String {
         c.cond_extra,
         c.it_fold,
         c.store_buffer,
-        c.divides
+        c.divides,
+        c.fetch_bytes,
+        c.code_bytes,
+        c.code_lines
     )
 }
 
@@ -324,6 +328,16 @@ fn table(args: &[String]) -> Result<(), ModelError> {
         e.per_pixel("it_fold"),
         e.per_pixel("store_buffer"),
         e.per_pixel("divides"),
+    );
+    println!(
+        "Fetch: {:.2} bytes per instruction, so at this CPI {:.1} cycles per 128-bit flash line of \
+         straight-line code; the render executes {} distinct bytes of code ({} distinct 16-byte lines). If every \
+         refill also waited for a flash line at 5 wait states (P = 6): {:.1} cycles per pixel.",
+        e.get("fetch_bytes") / e.get("instr"),
+        16.0 * e.get("cycles") / e.get("fetch_bytes"),
+        e.get("code_bytes"),
+        e.get("code_lines"),
+        cpp + refills * (6 - P) as f64,
     );
     let robust = "direct/robust/exact";
     if let Some(r) = find("lab", robust) {

@@ -576,6 +576,13 @@ pub struct Counts {
     pub store_buffer: u64,
     /// `SDIV`/`UDIV` executed (each charged [`DIVIDE_CYCLES`]).
     pub divides: u64,
+    /// Bytes of instructions executed (the fetch stream's length).
+    pub fetch_bytes: u64,
+    /// Bytes of the distinct instructions executed (the code's footprint).
+    pub code_bytes: u64,
+    /// Distinct 16-byte-aligned lines of code executed (a flash line of the STM32F4's
+    /// ART accelerator is 128 bits).
+    pub code_lines: u64,
     /// Executed instructions the table does not know, with how often.
     pub unknown: BTreeMap<String, u64>,
 }
@@ -591,6 +598,7 @@ impl Counts {
 /// added to `counts`.
 pub fn charge(program: &Program, insn: &Insn, prev: Option<&Insn>, next: u32, counts: &mut Counts) {
     counts.instructions += 1;
+    counts.fetch_bytes += u64::from(insn.size);
     let Some(d) = &insn.decoded else {
         *counts.unknown.entry(insn.text.clone()).or_insert(0) += 1;
         return;
@@ -677,6 +685,10 @@ pub struct Tracer<'a> {
     prev: Option<usize>,
     pending: Option<usize>,
     counts: Counts,
+    /// Per instruction, and per 16-byte line of code: the number of the last region
+    /// that executed it (for the footprint).
+    insn_seen: Vec<usize>,
+    line_seen: Vec<usize>,
     pub regions: Vec<Counts>,
     /// Executed addresses inside a region that are not in the disassembly.
     pub unmapped: u64,
@@ -697,6 +709,8 @@ impl<'a> Tracer<'a> {
             prev: None,
             pending: None,
             counts: Counts::default(),
+            insn_seen: vec![0; program.insns.len()],
+            line_seen: vec![0; program.index.len() / 8 + 2],
             regions: Vec::new(),
             unmapped: 0,
         })
@@ -739,8 +753,28 @@ impl<'a> Tracer<'a> {
         }
         self.prev = self.pending;
         self.pending = program.at(pc);
-        if self.pending.is_none() {
-            self.unmapped += 1;
+        let region = self.regions.len() + 1;
+        match self
+            .pending
+            .and_then(|i| Some((program.insns.get(i)?, self.insn_seen.get_mut(i)?)))
+        {
+            Some((insn, seen)) => {
+                if *seen != region {
+                    *seen = region;
+                    self.counts.code_bytes += u64::from(insn.size);
+                }
+                // A 32-bit instruction may straddle two lines.
+                for addr in [insn.addr, insn.addr + insn.size - 1] {
+                    let line = ((addr - program.start) / 16) as usize;
+                    if let Some(seen) = self.line_seen.get_mut(line) {
+                        if *seen != region {
+                            *seen = region;
+                            self.counts.code_lines += 1;
+                        }
+                    }
+                }
+            }
+            None => self.unmapped += 1,
         }
     }
 

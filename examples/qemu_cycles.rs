@@ -8,10 +8,11 @@
 //! bash .ci/cycles --update   # every method on every standard scene
 //! ```
 //!
-//! Which renders: the default method on `lab`, unless the build-time environment
-//! variable `QEMU_CYCLES_ALL=1` selects every method in `Method::ALL` on every standard
-//! scene (tracing runs QEMU one instruction per translation block: about a minute per
-//! 100 M instructions). First, the sink alone (the `sink_only` of `qemu_cortex_m4`).
+//! Which renders: the default method on `lab`, or every method in `Method::ALL` on
+//! every standard scene if QEMU's semihosting command line holds the word `all`
+//! (`-semihosting-config enable=on,target=native,arg=qemu_cycles,arg=all`). Chosen at
+//! run time, so that both selections trace the same ELF: the same code, the same
+//! estimates. First, the sink alone (the `sink_only` of `qemu_cortex_m4`).
 //! Prints, after each region, the line that labels it:
 //!
 //! ```text
@@ -35,7 +36,7 @@ mod cycle_region;
 #[cfg(target_os = "none")]
 mod fw {
     use cortex_m_rt::entry;
-    use cortex_m_semihosting::{debug, hprintln};
+    use cortex_m_semihosting::{debug, hprintln, syscall};
     use embedded_graphics::pixelcolor::Rgb888;
     use embedded_graphics::prelude::*;
     use embedded_graphics::primitives::Rectangle;
@@ -50,11 +51,14 @@ mod fw {
 
     /// Every scene is rendered at this size (its own camera otherwise).
     const SIZE: Size = Size::new(240, 240);
-    /// Every method on every scene, or only the default on lab.
-    const ALL: bool = match option_env!("QEMU_CYCLES_ALL") {
-        Some(v) => matches!(v.as_bytes(), b"1"),
-        None => false,
-    };
+    /// Whether the semihosting command line asks for every render (the word `all`).
+    fn every_render() -> bool {
+        let mut line = [0u8; 128];
+        // SAFETY: SYS_GET_CMDLINE writes at most `line.len()` bytes (NUL-terminated)
+        // into `line`; a line that does not fit is an error status, not a write.
+        let status = unsafe { syscall!(GET_CMDLINE, line.as_mut_ptr(), line.len()) };
+        status == 0 && line.split(|&b| b == b' ' || b == 0).any(|word| word == b"all")
+    }
 
     /// The render under test, as in `qemu_cortex_m4`: never inlined, so the region is
     /// the call and nothing of the caller's loop.
@@ -101,9 +105,10 @@ mod fw {
 
     #[entry]
     fn main() -> ! {
+        let all = every_render();
         hprintln!(
             "qemu_cycles: {} at {}x{}",
-            if ALL {
+            if all {
                 "every method on every standard scene"
             } else {
                 "the default method on lab"
@@ -117,13 +122,13 @@ mod fw {
         cycle_region_end();
         hprintln!("region sink pixelhash pixels {}", hash.pixels());
 
-        let ok = if ALL {
-            let all = &Method::ALL;
-            scene("lab", &scenes::LAB, scenes::LAB_CAMERA, all)
-                & scene("far", &scenes::FAR, scenes::FAR_CAMERA, all)
-                & scene("grazing", &scenes::GRAZING, scenes::GRAZING_CAMERA, all)
-                & scene("drift", &scenes::DRIFT, scenes::DRIFT_CAMERA, all)
-                & scene("crowd", &scenes::CROWD, scenes::CROWD_CAMERA, all)
+        let ok = if all {
+            let methods = &Method::ALL;
+            scene("lab", &scenes::LAB, scenes::LAB_CAMERA, methods)
+                & scene("far", &scenes::FAR, scenes::FAR_CAMERA, methods)
+                & scene("grazing", &scenes::GRAZING, scenes::GRAZING_CAMERA, methods)
+                & scene("drift", &scenes::DRIFT, scenes::DRIFT_CAMERA, methods)
+                & scene("crowd", &scenes::CROWD, scenes::CROWD_CAMERA, methods)
         } else {
             scene("lab", &scenes::LAB, scenes::LAB_CAMERA, &[Method::DEFAULT])
         };

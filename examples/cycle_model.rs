@@ -38,6 +38,8 @@
 mod cycle_model;
 #[path = "common/qemu_output.rs"]
 mod qemu_output;
+#[path = "common/standard.rs"]
+mod standard;
 
 use std::collections::HashMap;
 use std::io::{BufRead, BufReader, Read};
@@ -45,8 +47,8 @@ use std::process::ExitCode;
 
 use cycle_model::{Counts, Kind, ModelError, Program, Tracer, DIVIDE_CYCLES, P};
 use embedded_raytracer::Method;
+use standard::SCENES;
 
-const SCENES: [&str; 5] = ["lab", "far", "grazing", "drift", "crowd"];
 /// The STM32F405/407's maximum core clock.
 const F_CLK_HZ: f64 = 168e6;
 

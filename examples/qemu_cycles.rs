@@ -78,9 +78,34 @@ mod fw {
         }
     }
 
+    /// Renders the methods on each scene it is given, each render between the markers.
+    struct Renders<'a> {
+        methods: &'a [Method],
+        /// A camera could not be built or a pixel count was wrong.
+        failed: bool,
+    }
+
+    impl scenes::EachScene for Renders<'_> {
+        fn scene<const N: usize>(
+            &mut self,
+            name: &'static str,
+            scene: &'static Scene<N>,
+            params: CameraParams,
+        ) {
+            if !render_scene(name, scene, params, self.methods) {
+                self.failed = true;
+            }
+        }
+    }
+
     /// Renders `methods` on one scene, each between the markers; false if the camera
     /// cannot be built or a pixel count is wrong.
-    fn scene<const N: usize>(name: &str, scene: &Scene<N>, params: CameraParams, methods: &[Method]) -> bool {
+    fn render_scene<const N: usize>(
+        name: &str,
+        scene: &Scene<N>,
+        params: CameraParams,
+        methods: &[Method],
+    ) -> bool {
         let Ok(camera) = (CameraParams { size: SIZE, ..params }).build() else {
             hprintln!("camera {}: cannot be built", name);
             return false;
@@ -123,14 +148,14 @@ mod fw {
         hprintln!("region sink pixelhash pixels {}", hash.pixels());
 
         let ok = if all {
-            let methods = &Method::ALL;
-            scene("lab", &scenes::LAB, scenes::LAB_CAMERA, methods)
-                & scene("far", &scenes::FAR, scenes::FAR_CAMERA, methods)
-                & scene("grazing", &scenes::GRAZING, scenes::GRAZING_CAMERA, methods)
-                & scene("drift", &scenes::DRIFT, scenes::DRIFT_CAMERA, methods)
-                & scene("crowd", &scenes::CROWD, scenes::CROWD_CAMERA, methods)
+            let mut renders = Renders {
+                methods: &Method::ALL,
+                failed: false,
+            };
+            scenes::for_each(&mut renders);
+            !renders.failed
         } else {
-            scene("lab", &scenes::LAB, scenes::LAB_CAMERA, &[Method::DEFAULT])
+            render_scene("lab", &scenes::LAB, scenes::LAB_CAMERA, &[Method::DEFAULT])
         };
         if ok {
             hprintln!("result ok");

@@ -675,7 +675,8 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
 
-    let cycles = estimated_cycles(&Path::new(root).join("tests/data/cycles_cortex_m4.txt"))?;
+    let cycles =
+        estimated_cycles(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cycles_cortex_m4.txt"))?;
     write_outputs(&args, runs, &points, &growth, &cycles, &isolated)?;
     Ok(())
 }

@@ -245,38 +245,17 @@ fn format_counts(c: &Counts) -> String {
     )
 }
 
-/// One `estimate` line of the data file.
-struct Estimate<'a> {
-    words: Vec<&'a str>,
-}
-
-impl Estimate<'_> {
-    fn get(&self, key: &str) -> f64 {
-        // Keys follow the label; search after the first two words (scene, method).
-        number(self.words.get(3..).unwrap_or_default(), key).map_or(f64::NAN, |v| v as f64)
-    }
-    fn per_pixel(&self, key: &str) -> f64 {
-        self.get(key) / self.get("pixels")
-    }
-}
-
 fn table(args: &[String]) -> Result<(), ModelError> {
     let path = args
         .first()
         .filter(|a| !a.starts_with("--"))
         .map_or("tests/data/cycles_cortex_m4.txt", String::as_str);
     let text = read(path)?;
-    let estimates: Vec<Estimate> = text
-        .lines()
-        .filter(|l| l.starts_with("estimate "))
-        .map(|l| Estimate {
-            words: l.split_whitespace().collect(),
-        })
-        .collect();
+    let estimates = cycle_model::estimates(&text);
     let find = |scene: &str, method: &str| {
         estimates
             .iter()
-            .find(|e| e.words.get(1) == Some(&scene) && e.words.get(2) == Some(&method))
+            .find(|e| e.scene() == scene && e.method() == method)
     };
 
     println!("Estimated Cortex-M4 cycles per pixel (instructions per pixel) at 240×240, `PixelHash` sink included:\n");
@@ -349,7 +328,7 @@ fn table(args: &[String]) -> Result<(), ModelError> {
             100.0 * (e.get("instr") / r.get("instr") - 1.0),
         );
     }
-    if let Some(sink) = estimates.iter().find(|e| e.words.get(1) == Some(&"sink")) {
+    if let Some(sink) = estimates.iter().find(|e| e.scene() == "sink") {
         println!(
             "The `PixelHash` sink alone (240 rows of 240 pixels through `fill_contiguous`): {:.1} estimated \
              cycles per pixel ({:.1} instructions).",
@@ -364,10 +343,7 @@ fn table(args: &[String]) -> Result<(), ModelError> {
         let mut compared = 0;
         let mut worst: f64 = 0.0;
         for e in &estimates {
-            let (Some(scene), Some(method)) = (e.words.get(1), e.words.get(2)) else {
-                continue;
-            };
-            if let Some(q) = qemu.get(scene, method) {
+            if let Some(q) = qemu.get(e.scene(), e.method()) {
                 compared += 1;
                 worst = worst.max((e.get("instr") - q.instructions as f64).abs());
             }

@@ -35,6 +35,8 @@ use embedded_raytracer::reference::{self, compare, ReferenceImage};
 use embedded_raytracer::{scene_file, Camera, Method, Options, Render, Scene, SphereTest, Sqrt, Stepping};
 use plotters::prelude::*;
 
+#[path = "common/cycle_model.rs"]
+mod cycle_model;
 #[path = "common/standard.rs"]
 mod standard;
 use standard::{MAX_SPHERES, SCENES};
@@ -92,21 +94,18 @@ fn errors<const N: usize>(
 /// The scene of the estimated-cycles panels.
 const CYCLES_SCENE: &str = "lab";
 
-/// `(scene, method) → estimated Cortex-M4 cycles per pixel` from the cycle model's data
-/// file (`estimate SCENE METHOD … pixels N … cycles C …` lines).
+/// `(scene, method, estimated Cortex-M4 cycles per pixel)` from the cycle model's data
+/// file.
 fn estimated_cycles(path: &Path) -> Result<Vec<(String, String, f64)>, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let value = |words: &[&str], key: &str| {
-        let i = words.iter().skip(3).position(|w| *w == key)? + 3;
-        words.get(i + 1)?.parse::<f64>().ok()
-    };
-    Ok(text
-        .lines()
-        .filter(|l| l.starts_with("estimate "))
-        .filter_map(|l| {
-            let words: Vec<&str> = l.split_whitespace().collect();
-            let cycles = value(&words, "cycles")? / value(&words, "pixels")?;
-            Some((words.get(1)?.to_string(), words.get(2)?.to_string(), cycles))
+    Ok(cycle_model::estimates(&text)
+        .iter()
+        .map(|e| {
+            (
+                e.scene().to_string(),
+                e.method().to_string(),
+                e.per_pixel("cycles"),
+            )
         })
         .collect())
 }

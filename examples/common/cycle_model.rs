@@ -802,6 +802,46 @@ pub fn trace_pc(line: &[u8]) -> Option<u32> {
     Some(pc)
 }
 
+/// One line of the tool's output (and of `tests/data/cycles_cortex_m4.txt`):
+/// `estimate SCENE METHOD … KEY VALUE …`.
+pub struct Estimate<'a> {
+    pub words: Vec<&'a str>,
+}
+
+impl Estimate<'_> {
+    /// The second word: the scene (or `sink`, `calibration`).
+    pub fn scene(&self) -> &str {
+        self.words.get(1).copied().unwrap_or("")
+    }
+
+    /// The third word: the method.
+    pub fn method(&self) -> &str {
+        self.words.get(2).copied().unwrap_or("")
+    }
+
+    /// The number after `key` (searched after scene and method); NaN if absent.
+    pub fn get(&self, key: &str) -> f64 {
+        let words = self.words.get(3..).unwrap_or_default();
+        let i = words.iter().position(|w| *w == key);
+        i.and_then(|i| words.get(i + 1)?.parse().ok()).unwrap_or(f64::NAN)
+    }
+
+    /// `key` per pixel.
+    pub fn per_pixel(&self, key: &str) -> f64 {
+        self.get(key) / self.get("pixels")
+    }
+}
+
+/// The `estimate` lines of `text`.
+pub fn estimates(text: &str) -> Vec<Estimate<'_>> {
+    text.lines()
+        .filter(|l| l.starts_with("estimate "))
+        .map(|l| Estimate {
+            words: l.split_whitespace().collect(),
+        })
+        .collect()
+}
+
 /// The address of one instruction line of QEMU's `-d in_asm` listing:
 /// `0x08000188:  f000 f831  bl       #0x80016ac`. Other lines: `None`.
 pub fn in_asm_pc(line: &[u8]) -> Option<u32> {

@@ -14,12 +14,12 @@
 //! (each block's instructions listed once when translated, one `Trace` line per
 //! executed block, expanded into its instructions; no interrupt runs inside a region,
 //! so every block runs to its end). `.ci/cycles --quick` checks that both give the same
-//! estimates. Regions lie
-//! between calls of `cycle_region_begin` and `cycle_region_end`; the k-th is labelled by
-//! the k-th `region LABEL…` line of the firmware's output. Prints one line per region:
+//! estimates. Regions lie between calls of `cycle_region_begin` and `cycle_region_end`;
+//! the k-th is labelled by the k-th `region LABEL…` line of the firmware's output.
+//! Prints one line per region (keys: `examples/common/cycle_model.rs`'s `Counts`):
 //!
 //! ```text
-//! estimate LABEL… instr 4029322 cycles 6039012 refills 153622 ldst 1704855 branch 520903 divsqrt 609266 fp 1241162 int 1962826 cond_extra 0 it_fold 68745 store_buffer 38159 divides 0 fetch_bytes … code_bytes … code_lines …
+//! estimate LABEL… instr N cycles C refills R ldst C1 branch C2 divsqrt C3 fp C4 int C5 cond_extra X it_fold Y store_buffer Z divides D fetch_bytes B code_bytes F code_lines L
 //! ```
 //!
 //! A label holding `expected N` is a calibration loop: its estimate must be exactly `N`
@@ -30,7 +30,8 @@
 //! `table` formats a file of such lines (default `tests/data/cycles_cortex_m4.txt`) as
 //! the README's Markdown: cycles per pixel beside instructions per pixel, and the
 //! default method's breakdown on `lab`; with `--qemu`, the trace's instruction counts
-//! are compared with the SysTick-measured ones of that `qemu_cortex_m4` run.
+//! are compared with the SysTick-measured ones of that `qemu_cortex_m4` output (which
+//! must come from the same kernel).
 //!
 //! `.ci/cycles` builds the firmware, runs QEMU and this tool.
 
@@ -349,8 +350,8 @@ fn table(args: &[String]) -> Result<(), ModelError> {
             }
         }
         println!(
-            "Instructions in the trace against the SysTick count of `{qemu_path}`: {compared} renders compared, \
-             largest difference {worst} instructions per render."
+            "Instructions in the trace against the SysTick count of a `qemu_cortex_m4` run of the same kernel: \
+             {compared} renders compared, largest difference {worst} instructions per render."
         );
     }
     Ok(())

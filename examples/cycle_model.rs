@@ -10,7 +10,7 @@
 //! `run` streams QEMU's log (a named pipe or stdin, never held in memory) through the
 //! model, with `DISASM` the `llvm-objdump -d` of the same ELF. The log is either
 //! `-singlestep -d exec,nochain` (one instruction per translation block: one `Trace`
-//! line per executed instruction) or, about 20 times faster, `-d in_asm,exec,nochain`
+//! line per executed instruction) or, several times faster, `-d in_asm,exec,nochain`
 //! (each block's instructions listed once when translated, one `Trace` line per
 //! executed block, expanded into its instructions; no interrupt runs inside a region,
 //! so every block runs to its end). `.ci/cycles --quick` checks that both give the same

@@ -11,7 +11,9 @@
 //! reference's, hit/miss included) and the **max shade error** (largest 8-bit channel
 //! difference among the pixels that hit the same sphere as the reference, or both miss).
 //! Also the growth curve: ns/pixel against the number of spheres (the first 1 … 64 of
-//! the `crowd` scene).
+//! the `crowd` scene), and the same errors on `lab` against the **estimated Cortex-M4
+//! cycles per pixel** of `tests/data/cycles_cortex_m4.txt` (240×240, from `.ci/cycles
+//! --update`; a model, see the README) instead of the host's time.
 //!
 //! The reference is the accuracy lab's independent `f64` renderer
 //! ([`embedded_raytracer::reference`]: the seed's camera and Lab #1 shading, the robust
@@ -33,6 +35,8 @@ use embedded_raytracer::reference::{self, compare, ReferenceImage};
 use embedded_raytracer::{scene_file, Camera, Method, Options, Render, Scene, SphereTest, Sqrt, Stepping};
 use plotters::prelude::*;
 
+#[path = "common/cycle_model.rs"]
+mod cycle_model;
 #[path = "common/standard.rs"]
 mod standard;
 use standard::{MAX_SPHERES, SCENES};
@@ -87,6 +91,25 @@ fn errors<const N: usize>(
     (m.coverage_errors, m.shade_max)
 }
 
+/// The scene of the estimated-cycles panels.
+const CYCLES_SCENE: &str = "lab";
+
+/// `(scene, method, estimated Cortex-M4 cycles per pixel)` from the cycle model's data
+/// file.
+fn estimated_cycles(path: &Path) -> Result<Vec<(String, String, f64)>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(cycle_model::estimates(&text)
+        .iter()
+        .map(|e| {
+            (
+                e.scene().to_string(),
+                e.method().to_string(),
+                e.per_pixel("cycles"),
+            )
+        })
+        .collect())
+}
+
 /// One point of the chart.
 struct Point3 {
     scene: &'static str,
@@ -104,7 +127,7 @@ const BASELINE: &str = "baseline (literal, no culling)";
 // Plotting: plotters draws the shapes into an RGB buffer (no font features); the
 // labels are drawn afterwards with embedded-graphics' built-in 6x10 mono font.
 
-const W: u32 = 2400;
+const W: u32 = 2800;
 const H: u32 = 820;
 
 fn test_color(t: Option<SphereTest>) -> RGBColor {
@@ -158,43 +181,64 @@ struct Label {
 
 type DrawResult<T> = Result<T, Box<dyn std::error::Error>>;
 
-fn plot(points: &[Point3], growth: &[(usize, String, f64)], path: &Path) -> DrawResult<()> {
+fn plot(
+    points: &[Point3],
+    growth: &[(usize, String, f64)],
+    cycles: &[(String, String, f64)],
+    path: &Path,
+) -> DrawResult<()> {
     let mut buf = vec![255u8; (W * H * 3) as usize];
     let mut labels: Vec<Label> = Vec::new();
     let black = Rgb888::BLACK;
     {
         let root = BitMapBackend::with_buffer(&mut buf, (W, H)).into_drawing_area();
         root.fill(&WHITE)?;
-        // Two rows of six panels: coverage (top) and shade (bottom) per scene; the
-        // growth curve and the legend in the last column.
-        let panels = root.split_evenly((2, 6));
+        // Two rows of seven panels: coverage (top) and shade (bottom) per scene; the
+        // growth curve and the legend; the estimated-cycles panels.
+        let panels = root.split_evenly((2, 7));
         for (metric, name) in [(0, "coverage errors (pixels)"), (1, "max shade error (levels)")] {
+            let error = |p: &Point3| {
+                symlog(if metric == 0 {
+                    p.coverage as f64
+                } else {
+                    f64::from(p.shade)
+                })
+            };
             for (k, scene) in SCENES.iter().enumerate() {
-                let Some(area) = panels.get(metric * 6 + k) else {
+                let Some(area) = panels.get(metric * 7 + k) else {
                     break;
                 };
                 let pts: Vec<&Point3> = points.iter().filter(|p| p.scene == *scene).collect();
-                let xy: Vec<(f64, f64)> = pts
-                    .iter()
-                    .map(|p| {
-                        (
-                            p.ns,
-                            symlog(if metric == 0 {
-                                p.coverage as f64
-                            } else {
-                                f64::from(p.shade)
-                            }),
-                        )
-                    })
-                    .collect();
-                draw_panel(area, &format!("{scene}: {name}"), &xy, &pts, &mut labels)?;
+                let xy: Vec<(f64, f64)> = pts.iter().map(|p| (p.ns, error(p))).collect();
+                draw_panel(
+                    area,
+                    &format!("{scene}: {name}"),
+                    "ns/pixel",
+                    &xy,
+                    &pts,
+                    &mut labels,
+                )?;
+            }
+            // Estimated Cortex-M4 cycles per pixel (the methods the firmware renders).
+            let (pts, xy): (Vec<&Point3>, Vec<(f64, f64)>) = points
+                .iter()
+                .filter(|p| p.scene == CYCLES_SCENE)
+                .filter_map(|p| {
+                    let method = p.method?.to_string();
+                    let c = cycles.iter().find(|c| c.0 == p.scene && c.1 == method)?;
+                    Some((p, (c.2, error(p))))
+                })
+                .unzip();
+            if let (Some(area), false) = (panels.get(metric * 7 + 6), pts.is_empty()) {
+                let title = format!("{CYCLES_SCENE}, est. M4 cycles: {name}");
+                draw_panel(area, &title, "est. M4 cycles/px", &xy, &pts, &mut labels)?;
             }
         }
         if let Some(area) = panels.get(5) {
             draw_growth(area, growth, &mut labels)?;
         }
         // Legend (marker positions relative to its panel, labels absolute).
-        if let Some(legend) = panels.get(11) {
+        if let Some(legend) = panels.get(12) {
             let (lx, ly) = legend.get_base_pixel();
             let tests = [
                 SphereTest::Algebraic,
@@ -241,6 +285,10 @@ fn plot(points: &[Point3], growth: &[(usize, String, f64)], path: &Path) -> Draw
             item(&mut labels, y, "Pareto front".into());
             y += 20;
             item(&mut labels, y, "x: ns/pixel (log scale)".into());
+            y += 20;
+            item(&mut labels, y, "right: estimated Cortex-M4".into());
+            y += 12;
+            item(&mut labels, y, "  cycles/pixel at 240x240".into());
             y += 20;
             item(&mut labels, y, "y: log10(1 + error)".into());
             y += 20;
@@ -299,6 +347,7 @@ fn fmt_tick(t: f64) -> String {
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     title: &str,
+    x_name: &str,
     xy: &[(f64, f64)],
     pts: &[&Point3],
     labels: &mut Vec<Label>,
@@ -355,9 +404,9 @@ where
     });
     let (bx, by) = chart.backend_coord(&(xmax, -0.05 * ymax));
     labels.push(Label {
-        x: bx - 60,
+        x: bx - 6 * x_name.len() as i32 - 12,
         y: by + 22,
-        text: "ns/pixel".into(),
+        text: x_name.into(),
         color: Rgb888::new(90, 90, 90),
     });
     // Frame.
@@ -625,7 +674,9 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
 
-    write_outputs(&args, runs, &points, &growth, &isolated)?;
+    let cycles =
+        estimated_cycles(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cycles_cortex_m4.txt"))?;
+    write_outputs(&args, runs, &points, &growth, &cycles, &isolated)?;
     Ok(())
 }
 
@@ -637,6 +688,7 @@ fn write_outputs(
     runs: usize,
     points: &[Point3],
     growth: &[(usize, String, f64)],
+    cycles: &[(String, String, f64)],
     isolated: &[Isolated],
 ) -> Result<(), Box<dyn std::error::Error>> {
     let command = if args.quick {
@@ -792,7 +844,7 @@ fn write_outputs(
     let out = &args.out;
     std::fs::write(out.join("speed_vs_accuracy.csv"), csv)?;
     std::fs::write(out.join("speed_vs_accuracy.md"), &md)?;
-    plot(points, growth, &out.join("speed_vs_accuracy.png"))?;
+    plot(points, growth, cycles, &out.join("speed_vs_accuracy.png"))?;
     println!("{md}");
     println!("wrote {}/speed_vs_accuracy.{{csv,md,png}}", out.display());
     Ok(())

@@ -13,7 +13,7 @@ use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
 use crate::camera::Camera;
-use crate::intersect::{RowGeometry, SphereGeom, TestStrategy};
+use crate::intersect::{RowGeometry, Scale, SphereGeom, TestStrategy};
 use crate::math::SqrtFn;
 use crate::render::Options;
 use crate::scanline;
@@ -21,6 +21,7 @@ use crate::scene::Scene;
 use crate::shade::Shader;
 use crate::sink::RowSink;
 use crate::span::Silhouette;
+use crate::sphere::Sphere;
 use crate::stepping::Stepper;
 
 /// A sphere as the frame sees it.
@@ -42,6 +43,8 @@ pub(crate) struct FrameSphere<T: TestStrategy, Sh: Shader> {
 /// Per-frame state: the visible part of the image and each sphere's constants.
 pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
     pub camera: &'a Camera,
+    /// The power of two the spheres' eye-relative lengths are scaled by.
+    pub scale: Scale,
     pub spheres: &'a [FrameSphere<T, Sh>],
     pub background: Rgb888,
     /// Visible columns `i0..i1` and rows `j0..j1` of the image.
@@ -76,6 +79,10 @@ pub(crate) fn render<const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q:
 impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
     /// Clips the image (placed at `offset`) to `clip` and builds every sphere's
     /// per-frame constants into `spheres`; `None` if nothing is visible.
+    ///
+    /// Out of line: its temporaries (the f64 silhouette computations) are dead before
+    /// the scanline loop starts, so they do not add to the pixel loop's stack.
+    #[inline(never)]
     fn new<const N: usize, S: Stepper>(
         scene: &Scene<N>,
         camera: &'a Camera,
@@ -100,33 +107,39 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         // How far the stepping's directions can be from the ideal ones (widens the spans).
         let step_err = S::error_bound(camera);
         let eye = camera.eye();
-        let w = camera.w();
         let row = RowGeometry {
             du: camera.pixel_step(),
             anchor: options.anchor_interval,
             pixel_width: camera.pixel_width(),
         };
-        // A push loop, not `collect()`: heapless' `FromIterator` panics on overflow, and
-        // the optimiser cannot see that a `Scene<N>` never holds more than N spheres.
-        spheres.clear();
-        for s in scene.spheres() {
-            // Per-sphere constants and silhouette, once per frame.
-            let geom = SphereGeom::new(s.center, s.radius, eye);
-            let silhouette = if options.span_culling {
-                Silhouette::new(geom.l, s.radius, camera, T::MARGIN, step_err)
-            } else {
-                Silhouette::All
-            };
-            // Never fails: the scene holds at most N spheres.
-            let _ = spheres.push(FrameSphere {
-                geom,
-                test: T::consts(&geom, &row),
-                shade: Sh::object(s, &geom, w),
-                silhouette,
-            });
+        // Per-sphere constants and silhouettes, once per frame, in the scene's units;
+        // only a scene whose magnitudes are outside the scale-1 range is built again in
+        // scaled units (see `Scale`), so the usual frame pays one comparison per sphere.
+        let mut scale = Scale(1.0);
+        loop {
+            let mut largest = 0.0f32;
+            // A push loop, not `collect()`: heapless' `FromIterator` panics on overflow,
+            // and the optimiser cannot see that a `Scene<N>` never holds more than N.
+            spheres.clear();
+            for s in scene.spheres() {
+                Self::push_sphere::<N, S>(spheres, s, camera, options, &row, step_err, scale);
+                for m in [(s.center - eye).max_abs(), s.radius.abs()] {
+                    // Comparisons pass NaN over: a NaN sphere never decides the scale.
+                    if m > largest {
+                        largest = m;
+                    }
+                }
+            }
+            // At most twice: the second pass finds the same magnitudes.
+            let needed = Scale::for_magnitude(largest);
+            if needed == scale {
+                break;
+            }
+            scale = needed;
         }
         Some(Self {
             camera,
+            scale,
             spheres,
             background: scene.background(),
             i0,
@@ -135,5 +148,44 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
             j1,
             offset,
         })
+    }
+
+    /// One sphere's per-frame constants and silhouette, lengths scaled by `scale`.
+    #[inline(always)]
+    fn push_sphere<const N: usize, S: Stepper>(
+        spheres: &mut Vec<FrameSphere<T, Sh>, N>,
+        s: &Sphere,
+        camera: &Camera,
+        options: Options,
+        row: &RowGeometry,
+        step_err: f32,
+        scale: Scale,
+    ) {
+        let eye = camera.eye();
+        {
+            let geom = SphereGeom::new(s.center, s.radius, eye, scale);
+            let radius = s.radius * scale.0;
+            let silhouette = if options.span_culling {
+                Silhouette::new(geom.l, radius, camera, T::MARGIN, step_err)
+            } else {
+                Silhouette::All
+            };
+            // The silhouette's size on the image, for a test whose choices depend on it
+            // (Auto), computed only by such a test: the culling ellipse's (an upper
+            // bound), or where that is unbounded (culling off, or a stepping margin too
+            // large to cull with) the sphere's own, without the stepping margin.
+            let extent = || {
+                silhouette
+                    .extent()
+                    .or_else(|| Silhouette::new(geom.l, radius, camera, T::MARGIN, 0.0).extent())
+            };
+            // Never fails: the scene holds at most N spheres.
+            let _ = spheres.push(FrameSphere {
+                geom,
+                test: T::consts(&geom, row, extent),
+                shade: Sh::object(s, &geom, scale, camera.w()),
+                silhouette,
+            });
+        }
     }
 }

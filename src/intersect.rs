@@ -16,7 +16,7 @@
 use core::num::NonZeroU32;
 
 use crate::math::{SqrtFn, EDGE_TOLERANCE, UNIT_ROUNDOFF};
-use crate::span::Margin;
+use crate::span::{Extent, Margin};
 use crate::vec3::Vec3;
 
 /// A sphere's per-frame geometry relative to the ray origin (the eye, for primary
@@ -34,18 +34,75 @@ pub(crate) struct SphereGeom {
 }
 
 impl SphereGeom {
-    /// The geometry of the sphere (`center`, `radius`) seen from `origin`.
+    /// The geometry of the sphere (`center`, `radius`) seen from `origin`, in units
+    /// scaled by the power of two `scale` ([`Scale`]).
     #[inline(always)]
-    pub(crate) fn new(center: Vec3, radius: f32, origin: Vec3) -> Self {
-        let l = center - origin;
+    pub(crate) fn new(center: Vec3, radius: f32, origin: Vec3, scale: Scale) -> Self {
+        let l = (center - origin) * scale.0;
+        let r = radius * scale.0;
         let l2 = l.dot(l);
-        let r2 = radius * radius;
+        let r2 = r * r;
         Self {
             l,
             l2,
             r2,
             c: l2 - r2,
         }
+    }
+}
+
+/// The power of two a frame's (or a query's) eye-relative lengths are multiplied by
+/// before any product is formed, so that no square overflows or loses its precision to
+/// subnormals: `1` while the largest eye-relative coordinate or radius `m` is within
+/// `[2⁻⁴⁰, 2⁴⁰]` (every square and product of the tests then stays far inside the
+/// `f32` range), otherwise the power of two that brings `m` into `[1, 2)`.
+///
+/// Multiplying by a power of two is exact, and every test, the silhouettes and the
+/// shading are homogeneous in these lengths (a hit's `t` scales with them, `n·(−w)` not
+/// at all), so a scaled frame computes exactly the numbers an unscaled one would have,
+/// times powers of two: the same pixels, bit for bit, for any scene whose magnitudes
+/// `f32` can hold, and no cost per pixel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Scale(pub f32);
+
+impl Scale {
+    /// The scale for the largest eye-relative coordinate or radius `m`.
+    pub(crate) fn for_magnitude(m: f32) -> Self {
+        const LO: f32 = 1.0 / 1_099_511_627_776.0; // 2⁻⁴⁰
+        const HI: f32 = 1_099_511_627_776.0; // 2⁴⁰
+        if (LO..=HI).contains(&m) || !m.is_finite() {
+            return Scale(1.0);
+        }
+        // m = 2^e · 1.f; the scale is 2^−e, with e kept where 2^−e is a normal f32.
+        let e = ((m.to_bits() >> 23) & 0xff) as i32 - 127;
+        let e = e.clamp(-126, 126);
+        Scale(f32::from_bits(((127 - e) as u32) << 23))
+    }
+
+    /// The scale for spheres seen from `origin`. Once per frame: out of line and
+    /// optimised for size (`cold`), not unrolled.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn for_spheres<'s>(
+        spheres: impl IntoIterator<Item = &'s crate::sphere::Sphere>,
+        origin: Vec3,
+    ) -> Self {
+        let mut m = 0.0f32;
+        for s in spheres {
+            // Comparisons pass NaN over: a NaN sphere never decides the scale.
+            for x in [(s.center - origin).max_abs(), s.radius.abs()] {
+                if x > m {
+                    m = x;
+                }
+            }
+        }
+        Self::for_magnitude(m)
+    }
+
+    /// A ray parameter in scaled units back in the caller's: exact (a power of two).
+    #[inline(always)]
+    pub(crate) fn unscale_t(self, t: f32) -> f32 {
+        t / self.0
     }
 }
 
@@ -69,8 +126,9 @@ pub(crate) trait TestStrategy {
     type State: Copy;
     /// How far the test's rounding can widen its hit set (span culling's margin).
     const MARGIN: Margin;
-    /// The per-frame constants of one sphere.
-    fn consts(g: &SphereGeom, row: &RowGeometry) -> Self::Consts;
+    /// The per-frame constants of one sphere; `extent()` computes its silhouette's size
+    /// on the image (`None` when it is not a bounded ellipse), for a test that needs it.
+    fn consts(g: &SphereGeom, row: &RowGeometry, extent: impl FnOnce() -> Option<Extent>) -> Self::Consts;
     /// One ray on its own: nearest root `0 < t < t_max` of `origin + t·d`, `a = d·d`.
     fn ray<Q: SqrtFn>(g: &SphereGeom, d: Vec3, a: f32, t_max: f32) -> Option<f32>;
     /// The state for a row whose span starts at column `span_lo` of the *whole* image
@@ -119,7 +177,7 @@ macro_rules! stateless {
             type State = ();
             const MARGIN: Margin = $margin;
             #[inline(always)]
-            fn consts(_g: &SphereGeom, _row: &RowGeometry) {}
+            fn consts(_g: &SphereGeom, _row: &RowGeometry, _extent: impl FnOnce() -> Option<Extent>) {}
             #[inline(always)]
             fn ray<Q: SqrtFn>(g: &SphereGeom, d: Vec3, a: f32, t_max: f32) -> Option<f32> {
                 Self::test::<Q>(g, d, a, t_max)
@@ -278,7 +336,7 @@ pub(crate) struct FdConsts {
 
 impl FdConsts {
     #[inline(always)]
-    fn new(g: &SphereGeom, row: &RowGeometry) -> Self {
+    fn new(g: &SphereGeom, row: &RowGeometry, extent: Option<Extent>) -> Self {
         let du = row.du;
         let x1 = g.l.cross(du);
         let x1x1 = x1.dot(x1);
@@ -292,16 +350,32 @@ impl FdConsts {
             x1x1,
             dd2: 2.0 * (r2_uu - x1x1),
             anchor,
-            use_fd: auto_uses_forward_diff(g.c, g.r2, row.pixel_width, anchor.get()),
+            use_fd: auto_uses_forward_diff(g.c, g.r2, row.pixel_width, anchor.get(), extent),
         }
     }
 }
 
-/// [`Auto`]'s rule for one sphere and frame: forward differences when their error bound
-/// ([`ForwardDiff`]) moves a silhouette edge by at most [`EDGE_TOLERANCE`] (1/16 pixel),
-/// i.e. `2⁻²⁴·K·(R + 2K) ≤ 1/16` with `R = r/(√(|L|² − r²)·pw)` the sphere's radius on
-/// screen in pixels; the robust test otherwise — and always when the eye is inside (or
-/// on) the sphere, where `R` is unbounded.
+/// [`Auto`]'s rule for one sphere and frame: forward differences where their error
+/// bound ([`ForwardDiff`]) moves a silhouette edge by at most [`EDGE_TOLERANCE`]
+/// (1/16 pixel), the robust test otherwise — and always when the eye is inside (or on)
+/// the sphere or its silhouette is not a bounded ellipse (`extent` is `None`).
+///
+/// The bound, with `u = 2⁻²⁴`, `K` the anchor interval, `Rx` the silhouette's largest
+/// half-width in columns (from the frame's ellipse, off-axis growth included), `Ry` its
+/// half-height in rows and `R₀ = r/(√(|L|² − r²)·pw)` a lower bound of its half-width
+/// (the image-centre size, with the pixel's real width):
+///
+/// `u·K·(Rx² + K² + 2K·max(Rx, K)) / (2·R₀) · max(1, Ry/R₀) ≤ 1/16`.
+///
+/// It is the forward differences' disc error after up to K steps,
+/// `u·K·(Dmax + K·Δmax)` with `Dmax ≤ k(Rx² + K²)` and `Δmax ≤ 2k·max(Rx, K)` (the
+/// columns stepped from an anchor reach K past the silhouette's centre), divided by the
+/// smallest gradient of the disc on the silhouette, `2k·R₀` at its sides and
+/// `2k·R₀²/Ry` at its top and bottom (`k` the disc's curvature per column²). For
+/// spheres much larger than K pixels it is `≈ u·K·Rx/2`: forward differences up to
+/// `Rx ≈ 2¹⁷` px at K = 16; for spheres much smaller than a pixel the `K²/R₀` term
+/// rules them out (below `R₀ ≈ 0.006` px at K = 16), and so do very non-square pixels,
+/// where a sphere a fraction of a column wide spans many rows.
 ///
 /// Why these two candidates: forward differences cost three additions per sphere and
 /// pixel and are as well conditioned as the robust test (perpendicular distance via
@@ -309,18 +383,20 @@ impl FdConsts {
 /// sufficient: the algebraic and geometric tests cost a dot product and more per pixel
 /// and fail from distance/radius 178 (measured).
 #[must_use]
-pub(crate) fn auto_uses_forward_diff(c: f32, r2: f32, pw: f32, k: u32) -> bool {
+pub(crate) fn auto_uses_forward_diff(c: f32, r2: f32, pw: f32, k: u32, extent: Option<Extent>) -> bool {
+    let Some(extent) = extent else {
+        return false;
+    };
     if !(c > 0.0) {
         return false;
     }
-    // Radius on screen in pixels (tangent-cone half-angle over the pixel angle at the
-    // image centre). Assumption: off-axis in a wide field of view a sphere covers up to
-    // 1/cos²θ more pixels than this, so there the 1/16 px promise holds only for the
-    // centre-equivalent radius (not yet taken from the frame's ellipse).
-    let r_px = crate::math::sqrt_exact(r2 / c) / pw;
+    let r0 = crate::math::sqrt_exact(r2 / c) / pw;
+    let rx = extent.half_width.max(r0);
     let k = k as f32;
-    // One rounding (2⁻²⁴) per forward-difference step, relative to the disc's range.
-    UNIT_ROUNDOFF * k * (r_px + 2.0 * k) <= EDGE_TOLERANCE
+    let disc_error = UNIT_ROUNDOFF * k * (rx * rx + k * k + 2.0 * k * rx.max(k));
+    let aspect = (extent.half_height / r0).max(1.0);
+    // NaN and infinities (a zero-width sphere) fail the comparison: robust.
+    disc_error / (2.0 * r0) * aspect <= EDGE_TOLERANCE
 }
 
 /// Per-row forward-differencing state of one sphere.
@@ -414,8 +490,9 @@ impl TestStrategy for ForwardDiff {
     const MARGIN: Margin = Margin::Linear;
 
     #[inline(always)]
-    fn consts(g: &SphereGeom, row: &RowGeometry) -> FdConsts {
-        FdConsts::new(g, row)
+    fn consts(g: &SphereGeom, row: &RowGeometry, _extent: impl FnOnce() -> Option<Extent>) -> FdConsts {
+        // Forward differences everywhere: `use_fd` is Auto's and stays unread here.
+        FdConsts::new(g, row, None)
     }
 
     /// One ray is an anchor: the forward-differenced test evaluated directly.
@@ -471,8 +548,8 @@ impl TestStrategy for Auto {
     const MARGIN: Margin = Margin::Linear;
 
     #[inline(always)]
-    fn consts(g: &SphereGeom, row: &RowGeometry) -> FdConsts {
-        FdConsts::new(g, row)
+    fn consts(g: &SphereGeom, row: &RowGeometry, extent: impl FnOnce() -> Option<Extent>) -> FdConsts {
+        FdConsts::new(g, row, extent())
     }
 
     /// One ray: as [`ForwardDiff`] (an anchor).
@@ -519,21 +596,39 @@ impl TestStrategy for Auto {
 mod tests {
     use super::*;
 
-    /// Auto's rule at its edges: the eye inside or on the sphere, and the on-screen
-    /// radius where `2⁻²⁴·K·(R + 2K)` crosses 1/16 px (K = 16: R = 65 504 px).
+    /// Auto's rule at its edges: the eye inside or on the sphere, no bounded
+    /// silhouette, spheres too large (R ≈ 2¹⁷ px at K = 16), too small (R ≈ 0.006 px)
+    /// and a sphere far narrower than it is tall (very non-square pixels).
     #[test]
     fn auto_rule_boundaries() {
         let pw = 1e-3;
-        // R = √(r²/c)/pw: choose c for a given R with r = 1.
+        // R₀ = √(r²/c)/pw: choose c for a given R₀ with r = 1.
         let c_for = |r_px: f32| 1.0 / (r_px * pw) / (r_px * pw);
-        assert!(auto_uses_forward_diff(c_for(100.0), 1.0, pw, 16));
-        assert!(auto_uses_forward_diff(c_for(65_000.0), 1.0, pw, 16));
-        assert!(!auto_uses_forward_diff(c_for(66_000.0), 1.0, pw, 16));
-        // A longer anchor interval shrinks the range: K = 4096 allows R ≤ 2⁸ − 2K < 0.
-        assert!(!auto_uses_forward_diff(c_for(10.0), 1.0, pw, 4096));
-        // Eye inside (c < 0), on the surface (c = 0), NaN: robust.
-        assert!(!auto_uses_forward_diff(-1.0, 1.0, pw, 16));
-        assert!(!auto_uses_forward_diff(0.0, 1.0, pw, 16));
-        assert!(!auto_uses_forward_diff(f32::NAN, 1.0, pw, 16));
+        let round = |r: f32| {
+            Some(Extent {
+                half_width: r,
+                half_height: r,
+            })
+        };
+        let fd = |r: f32, k: u32| auto_uses_forward_diff(c_for(r), 1.0, pw, k, round(r));
+        assert!(fd(100.0, 16));
+        assert!(fd(120_000.0, 16));
+        assert!(!fd(140_000.0, 16));
+        assert!(fd(0.007, 16));
+        assert!(!fd(0.005, 16));
+        // A longer anchor interval shrinks the range from both ends.
+        assert!(fd(10.0, 64));
+        assert!(!fd(10.0, 4096));
+        // Much taller than wide: the top and bottom edges move by Ry/R₀ more.
+        let tall = Some(Extent {
+            half_width: 2.0,
+            half_height: 50_000.0,
+        });
+        assert!(!auto_uses_forward_diff(c_for(2.0), 1.0, pw, 16, tall));
+        // No bounded silhouette; eye inside (c < 0), on the surface (c = 0), NaN: robust.
+        assert!(!auto_uses_forward_diff(c_for(100.0), 1.0, pw, 16, None));
+        assert!(!auto_uses_forward_diff(-1.0, 1.0, pw, 16, round(1.0)));
+        assert!(!auto_uses_forward_diff(0.0, 1.0, pw, 16, round(1.0)));
+        assert!(!auto_uses_forward_diff(f32::NAN, 1.0, pw, 16, round(1.0)));
     }
 }

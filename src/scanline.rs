@@ -14,7 +14,7 @@ use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
 use crate::frame::{Frame, FrameSphere};
-use crate::intersect::TestStrategy;
+use crate::intersect::{Scale, TestStrategy};
 use crate::math::SqrtFn;
 use crate::render::Sample;
 use crate::scene::Hit;
@@ -49,6 +49,7 @@ pub(crate) fn draw_rows<const N: usize, K: RowSink, S: Stepper, T: TestStrategy,
             hi_all,
             w: frame.camera.w(),
             background: frame.background,
+            scale: frame.scale,
             i: frame.i0,
             end: frame.i1,
             j,
@@ -122,6 +123,8 @@ struct RowPixels<'r, 's, S: Stepper, T: TestStrategy, Q, Sh: Shader> {
     hi_all: u32,
     w: Vec3,
     background: Rgb888,
+    /// The frame's length scale: a hit's `t` is reported in the scene's units.
+    scale: Scale,
     i: u32,
     end: u32,
     j: u32,
@@ -159,7 +162,13 @@ impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> Iterator for RowPixels<
         }
         // Shade the closest hit; background where there is none.
         let (hit, color) = match best {
-            Some((index, t, s)) => (Some(Hit { index, t }), Sh::shade(&s.shade, self.w, d, t)),
+            Some((index, t, s)) => (
+                Some(Hit {
+                    index,
+                    t: self.scale.unscale_t(t),
+                }),
+                Sh::shade(&s.shade, self.w, d, t),
+            ),
             None => (None, self.background),
         };
         Some(Sample {

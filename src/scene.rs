@@ -6,7 +6,7 @@ use heapless::Vec;
 
 use crate::dispatch::{dispatch_ray, Visit};
 use crate::error::SceneError;
-use crate::intersect::{SphereGeom, TestStrategy};
+use crate::intersect::{Scale, SphereGeom, TestStrategy};
 use crate::math::SqrtFn;
 use crate::method::{SphereTest, Sqrt};
 use crate::sphere::Sphere;
@@ -122,16 +122,20 @@ impl<const N: usize> Scene<N> {
                 // finds hits. Constants are made per sphere as it is tested (no
                 // per-query buffer on the stack).
                 let a = self.dir.dot(self.dir);
+                let scale = Scale::for_spheres(self.spheres, self.origin);
                 let mut t_max = f32::INFINITY;
                 let mut best = None;
                 for (index, sphere) in self.spheres.iter().enumerate() {
-                    let g = SphereGeom::new(sphere.center, sphere.radius, self.origin);
+                    let g = SphereGeom::new(sphere.center, sphere.radius, self.origin, scale);
                     if let Some(t) = T::ray::<Q>(&g, self.dir, a, t_max) {
                         t_max = t;
                         best = Some(Hit { index, t });
                     }
                 }
-                best
+                best.map(|h| Hit {
+                    t: scale.unscale_t(h.t),
+                    ..h
+                })
             }
         }
         dispatch_ray(

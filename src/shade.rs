@@ -5,7 +5,7 @@
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
-use crate::intersect::SphereGeom;
+use crate::intersect::{Scale, SphereGeom};
 use crate::sphere::Sphere;
 use crate::vec3::Vec3;
 
@@ -13,9 +13,9 @@ use crate::vec3::Vec3;
 pub(crate) trait Shader {
     /// Per-frame, per-object constants (built once per frame with the geometry).
     type Object: Copy;
-    /// The constants of `sphere`, whose eye-relative geometry is `g`; `w` is the
-    /// camera's view direction.
-    fn object(sphere: &Sphere, g: &SphereGeom, w: Vec3) -> Self::Object;
+    /// The constants of `sphere`, whose eye-relative geometry is `g` (lengths scaled by
+    /// `scale`); `w` is the camera's view direction.
+    fn object(sphere: &Sphere, g: &SphereGeom, scale: Scale, w: Vec3) -> Self::Object;
     /// The colour of the hit at `t` along the primary ray `eye + t·d`.
     fn shade(o: &Self::Object, w: Vec3, d: Vec3, t: f32) -> Rgb888;
 }
@@ -38,10 +38,10 @@ impl Shader for Lab1 {
     type Object = Lab1Object;
 
     #[inline(always)]
-    fn object(sphere: &Sphere, g: &SphereGeom, w: Vec3) -> Lab1Object {
+    fn object(sphere: &Sphere, g: &SphereGeom, scale: Scale, w: Vec3) -> Lab1Object {
         Lab1Object {
             lw: g.l.dot(w),
-            inv_r: 1.0 / sphere.radius,
+            inv_r: 1.0 / (sphere.radius * scale.0),
             rgb: channels(sphere.color),
         }
     }

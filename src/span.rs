@@ -60,7 +60,27 @@ pub(crate) enum Silhouette {
     },
 }
 
+/// A silhouette's size on the image, in pixels: the largest half-width along a row
+/// (columns) and the half-height (rows) of the (enlarged) ellipse. Upper bounds of the
+/// sphere's own extent.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Extent {
+    pub half_width: f32,
+    pub half_height: f32,
+}
+
 impl Silhouette {
+    /// The ellipse's extent; `None` when the silhouette is not a bounded ellipse.
+    pub(crate) fn extent(&self) -> Option<Extent> {
+        match *self {
+            Silhouette::All => None,
+            Silhouette::Ellipse { q, h0, .. } => Some(Extent {
+                half_width: crate::math::sqrt_exact(h0),
+                half_height: crate::math::sqrt_exact(h0 / q),
+            }),
+        }
+    }
+
     /// The silhouette of the sphere (`l = centre − eye`, radius `radius`) for the
     /// camera, enlarged for the test's `margin` and the stepping's direction error
     /// bound `step_err`. `All` whenever culling cannot be proven safe.

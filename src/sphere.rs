@@ -5,7 +5,7 @@ use embedded_graphics::pixelcolor::Rgb888;
 
 use crate::dispatch::{dispatch_ray, Visit};
 use crate::error::SphereError;
-use crate::intersect::{SphereGeom, TestStrategy};
+use crate::intersect::{Scale, SphereGeom, TestStrategy};
 use crate::math::SqrtFn;
 use crate::method::{SphereTest, Sqrt};
 use crate::stepping::Stepper;
@@ -74,8 +74,9 @@ impl Sphere {
             type Output = Option<f32>;
             #[inline(always)]
             fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Option<f32> {
-                let g = SphereGeom::new(self.sphere.center, self.sphere.radius, self.origin);
-                T::ray::<Q>(&g, self.dir, self.dir.dot(self.dir), f32::INFINITY)
+                let scale = Scale::for_spheres([self.sphere], self.origin);
+                let g = SphereGeom::new(self.sphere.center, self.sphere.radius, self.origin, scale);
+                T::ray::<Q>(&g, self.dir, self.dir.dot(self.dir), f32::INFINITY).map(|t| scale.unscale_t(t))
             }
         }
         dispatch_ray(

@@ -72,17 +72,39 @@ impl Vec3 {
         self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
     }
 
-    /// The unit vector in the direction of `self`, or `None` when the length is zero,
-    /// subnormal-small or not finite (so no NaN or ∞ can come out).
+    /// The unit vector in the direction of `self`, or `None` when `self` is zero, has a
+    /// subnormal largest component (its direction has lost precision) or is not finite
+    /// (so no NaN or ∞ can come out).
+    ///
+    /// The vector is first scaled by the power of two that brings its largest component
+    /// into `[1, 2)`, so no magnitude `f32` holds makes its squared length overflow or
+    /// go subnormal. Scaling by a power of two is exact, so the result is bit for bit
+    /// what `self / |self|` gives wherever that is representable.
     #[must_use]
     pub fn try_normalize(self) -> Option<Vec3> {
-        let len = self.length();
-        // Below ~1e-18 the squared length is subnormal and has lost precision.
-        if len.is_finite() && len > 1e-18 {
-            Some(self * (1.0 / len))
-        } else {
-            None
+        let m = self.max_abs();
+        if !(m.is_finite() && m >= f32::MIN_POSITIVE && self.is_finite()) {
+            return None;
         }
+        // m = 2^e · 1.f with e in −126 … 127: scale by 2^−e (2^−127 as 2^−126 · ½).
+        let e = ((m.to_bits() >> 23) & 0xff) as i32 - 127;
+        let v = self * f32::from_bits(((127 - e.min(126)) as u32) << 23);
+        let v = if e > 126 { v * 0.5 } else { v };
+        let len = v.length();
+        (len.is_finite() && len > 0.0).then(|| v * (1.0 / len))
+    }
+
+    /// The largest absolute component; NaN components are passed over (comparisons,
+    /// not `f32::max`, which is a libm call on a Cortex-M4).
+    #[inline]
+    pub(crate) fn max_abs(self) -> f32 {
+        let mut m = self.x.abs();
+        for c in [self.y.abs(), self.z.abs()] {
+            if c > m {
+                m = c;
+            }
+        }
+        m
     }
 }
 

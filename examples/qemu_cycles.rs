@@ -1,0 +1,177 @@
+//! The renders whose Cortex-M4 cycles `.ci/cycles` estimates: the same scenes, camera
+//! size, methods and `PixelHash` sink as `examples/qemu_cortex_m4.rs`, each render
+//! between the region markers of `examples/common/cycle_region.rs`, so that
+//! `cycle_model` (which reads QEMU's execution log) counts exactly the render call.
+//!
+//! ```sh
+//! bash .ci/cycles --quick    # the default method on lab (and the sink alone)
+//! bash .ci/cycles --update   # every method on every standard scene
+//! ```
+//!
+//! Which renders: the default method on `lab`, or every method in `Method::ALL` on
+//! every standard scene if QEMU's semihosting command line holds the word `all`
+//! (`-semihosting-config enable=on,target=native,arg=qemu_cycles,arg=all`). Chosen at
+//! run time, so that both selections trace the same ELF: the same code, the same
+//! estimates. First, the sink alone (the `sink_only` of `qemu_cortex_m4`).
+//! Prints, after each region, the line that labels it:
+//!
+//! ```text
+//! region lab direct/auto/exact hash 0x2400e66de1ccdfed pixels 57600
+//! region sink pixelhash pixels 57600
+//! ```
+//!
+//! The hashes must equal `qemu_cortex_m4`'s (`.ci/cycles` checks them against
+//! `tests/data/qemu_cortex_m4.txt`): the estimated cycles belong to the same pixels.
+//! No SysTick interrupt runs, so no exception lands inside a region.
+#![cfg_attr(target_os = "none", no_std, no_main)]
+
+#[cfg(target_os = "none")]
+#[path = "common/scenes.rs"]
+mod scenes;
+
+#[cfg(target_os = "none")]
+#[path = "common/cycle_region.rs"]
+mod cycle_region;
+
+#[cfg(target_os = "none")]
+mod fw {
+    use cortex_m_rt::entry;
+    use cortex_m_semihosting::{debug, hprintln, syscall};
+    use embedded_graphics::pixelcolor::Rgb888;
+    use embedded_graphics::prelude::*;
+    use embedded_graphics::primitives::Rectangle;
+    use embedded_raytracer::{hash::PixelHash, Camera, CameraParams, Method, Render, Scene};
+    use panic_semihosting as _;
+    // The PAC's vector table: cortex-m-rt's `device` feature (turned on by the stm32f4
+    // dev-dependency) requires it in every firmware example.
+    use stm32f4xx_hal as _;
+
+    use crate::cycle_region::{cycle_region_begin, cycle_region_end};
+    use crate::scenes;
+
+    /// Every scene is rendered at this size (its own camera otherwise).
+    const SIZE: Size = Size::new(240, 240);
+    /// Whether the semihosting command line asks for every render (the word `all`).
+    fn every_render() -> bool {
+        let mut line = [0u8; 128];
+        // SAFETY: SYS_GET_CMDLINE writes at most `line.len()` bytes (NUL-terminated)
+        // into `line`; a line that does not fit is an error status, not a write.
+        let status = unsafe { syscall!(GET_CMDLINE, line.as_mut_ptr(), line.len()) };
+        status == 0 && line.split(|&b| b == b' ' || b == 0).any(|word| word == b"all")
+    }
+
+    /// The render under test, as in `qemu_cortex_m4`: never inlined, so the region is
+    /// the call and nothing of the caller's loop.
+    #[inline(never)]
+    fn render<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, target: &mut PixelHash) {
+        let Ok(()) = Render::new(scene, camera).with_method(method).draw(target);
+    }
+
+    /// The sink alone, as `qemu_cortex_m4`'s `sink_only`: 240 rows of 240 pixels
+    /// through `fill_contiguous`, colours that cost one add each.
+    #[inline(never)]
+    fn sink_only(target: &mut PixelHash) {
+        for y in 0..SIZE.height {
+            let row = Rectangle::new(Point::new(0, y as i32), Size::new(SIZE.width, 1));
+            let colors = (0..SIZE.width).map(|x| Rgb888::new(x as u8, y as u8, (x ^ y) as u8));
+            let Ok(()) = target.fill_contiguous(&row, colors);
+        }
+    }
+
+    /// Renders the methods on each scene it is given, each render between the markers.
+    struct Renders<'a> {
+        methods: &'a [Method],
+        /// A camera could not be built or a pixel count was wrong.
+        failed: bool,
+    }
+
+    impl scenes::EachScene for Renders<'_> {
+        fn scene<const N: usize>(
+            &mut self,
+            name: &'static str,
+            scene: &'static Scene<N>,
+            params: CameraParams,
+        ) {
+            if !render_scene(name, scene, params, self.methods) {
+                self.failed = true;
+            }
+        }
+    }
+
+    /// Renders `methods` on one scene, each between the markers; false if the camera
+    /// cannot be built or a pixel count is wrong.
+    fn render_scene<const N: usize>(
+        name: &str,
+        scene: &Scene<N>,
+        params: CameraParams,
+        methods: &[Method],
+    ) -> bool {
+        let Ok(camera) = (CameraParams { size: SIZE, ..params }).build() else {
+            hprintln!("camera {}: cannot be built", name);
+            return false;
+        };
+        let mut ok = true;
+        for &method in methods {
+            let mut hash = PixelHash::new(SIZE);
+            cycle_region_begin();
+            render(scene, &camera, method, &mut hash);
+            cycle_region_end();
+            hprintln!(
+                "region {} {} hash {:#018x} pixels {}",
+                name,
+                method,
+                hash.hash(),
+                hash.pixels()
+            );
+            ok &= hash.pixels() == u64::from(SIZE.width) * u64::from(SIZE.height);
+        }
+        ok
+    }
+
+    #[entry]
+    fn main() -> ! {
+        let all = every_render();
+        hprintln!(
+            "qemu_cycles: {} at {}x{}",
+            if all {
+                "every method on every standard scene"
+            } else {
+                "the default method on lab"
+            },
+            SIZE.width,
+            SIZE.height
+        );
+        let mut hash = PixelHash::new(SIZE);
+        cycle_region_begin();
+        sink_only(&mut hash);
+        cycle_region_end();
+        hprintln!("region sink pixelhash pixels {}", hash.pixels());
+
+        let ok = if all {
+            let mut renders = Renders {
+                methods: &Method::ALL,
+                failed: false,
+            };
+            scenes::for_each(&mut renders);
+            !renders.failed
+        } else {
+            render_scene("lab", &scenes::LAB, scenes::LAB_CAMERA, &[Method::DEFAULT])
+        };
+        if ok {
+            hprintln!("result ok");
+            debug::exit(debug::EXIT_SUCCESS);
+        } else {
+            hprintln!("result FAILED");
+            debug::exit(debug::EXIT_FAILURE);
+        }
+        // Not reached: QEMU exits on the semihosting call.
+        loop {
+            cortex_m::asm::wfi();
+        }
+    }
+}
+
+#[cfg(not(target_os = "none"))]
+fn main() {
+    println!("qemu_cycles is firmware: bash .ci/cycles --quick (or --update) builds and traces it");
+}

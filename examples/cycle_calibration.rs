@@ -17,11 +17,11 @@
 //! `N − 1` times, 1 + P, then not taken, 1); see [`looped`].
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
-#[cfg(target_os = "none")]
+#[cfg(all(target_os = "none", target_abi = "eabihf"))]
 #[path = "common/cycle_region.rs"]
 mod cycle_region;
 
-#[cfg(target_os = "none")]
+#[cfg(all(target_os = "none", target_abi = "eabihf"))]
 mod fw {
     use core::arch::asm;
     use core::ptr::addr_of_mut;
@@ -270,6 +270,12 @@ mod fw {
         }
     }
 }
+
+#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+#[path = "common/wrong_target.rs"]
+mod wrong_target;
+#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+wrong_target::firmware_for!("cycle_calibration", "thumbv7em-none-eabihf");
 
 #[cfg(not(target_os = "none"))]
 fn main() {

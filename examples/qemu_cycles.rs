@@ -25,15 +25,15 @@
 //! No SysTick interrupt runs, so no exception lands inside a region.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
-#[cfg(target_os = "none")]
+#[cfg(all(target_os = "none", target_abi = "eabihf"))]
 #[path = "common/scenes.rs"]
 mod scenes;
 
-#[cfg(target_os = "none")]
+#[cfg(all(target_os = "none", target_abi = "eabihf"))]
 #[path = "common/cycle_region.rs"]
 mod cycle_region;
 
-#[cfg(target_os = "none")]
+#[cfg(all(target_os = "none", target_abi = "eabihf"))]
 mod fw {
     use cortex_m_rt::entry;
     use cortex_m_semihosting::{debug, hprintln, syscall};
@@ -170,6 +170,12 @@ mod fw {
         }
     }
 }
+
+#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+#[path = "common/wrong_target.rs"]
+mod wrong_target;
+#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+wrong_target::firmware_for!("qemu_cycles", "thumbv7em-none-eabihf");
 
 #[cfg(not(target_os = "none"))]
 fn main() {

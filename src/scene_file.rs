@@ -536,6 +536,125 @@ color = [255, 64, 64]
         let sphere = GOOD.split_once("[[sphere]]").unwrap().1;
         let text = format!("{GOOD}[[sphere]]{sphere}[[sphere]]{sphere}");
         assert_eq!(parse::<3>(&text).unwrap().scene.spheres().len(), 3);
+        let e = parse::<2>(&text).unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("sphere"));
+        assert_eq!(e.reason, "more than 2 spheres: at most 2 are supported");
+        assert_eq!(
+            parse::<1>(&text).unwrap_err().reason,
+            "more than 1 sphere: at most 1 is supported"
+        );
+    }
+
+    /// The count is checked while the array is read: a bad sphere after the N-th is
+    /// never looked at, so the error is the count, not that sphere's field.
+    #[test]
+    fn sphere_count_is_checked_while_parsing() {
+        let sphere = GOOD.split_once("[[sphere]]").unwrap().1;
+        let bad = sphere.replace("radius = 1.0", "radius = \"big\"");
+        let text = format!("{GOOD}[[sphere]]{sphere}[[sphere]]{bad}");
         assert_eq!(parse::<2>(&text).unwrap_err().field.as_deref(), Some("sphere"));
+        assert_eq!(
+            parse::<3>(&text).unwrap_err().field.as_deref(),
+            Some("sphere[2].radius")
+        );
+    }
+
+    #[test]
+    fn every_fixed_length_array_has_exactly_its_length() {
+        for (from, to, field, found) in [
+            (
+                "color = [255, 64, 64]",
+                "color = [255, 64, 64, 1]",
+                "sphere[0].color",
+                4,
+            ),
+            (
+                "eye = [0.0, 0.0, 5.0]",
+                "eye = [0.0, 0.0, 5.0, 1.0]",
+                "camera.eye",
+                4,
+            ),
+            (
+                "center = [0.0, 0.0, 0.0]",
+                "center = [0, 0, 0, \"junk\"]",
+                "sphere[0].center",
+                4,
+            ),
+            (
+                "background = [10, 20, 30]",
+                "background = [10, 20, 30, 40]",
+                "background",
+                4,
+            ),
+            (
+                "look_at = [0.0, 0.0, 0.0]",
+                "look_at = [0.0, 0.0]",
+                "camera.look_at",
+                2,
+            ),
+            ("fov_y_deg", "up = []\nfov_y_deg", "camera.up", 0),
+        ] {
+            let e = err(&GOOD.replace(from, to));
+            assert_eq!(e.field.as_deref(), Some(field), "{to}: {e}");
+            assert_eq!(e.reason, format!("expected 3 values, found {found}"), "{to}");
+        }
+    }
+
+    #[test]
+    fn errors_blame_the_right_field_and_reason() {
+        // Both sizes bad: each message names the dimension it is about.
+        let both = GOOD.replace("width = 32", "width = 9000");
+        let e = err(&both.replace("height = 24", "height = 0"));
+        assert_eq!(
+            e.to_string(),
+            "camera.height: width and height must be at least 1"
+        );
+        let e = err(&GOOD
+            .replace("width = 32", "width = 0")
+            .replace("height = 24", "height = 9000"));
+        assert_eq!(e.to_string(), "camera.width: width and height must be at least 1");
+        let e = err(&GOOD.replace("height = 24", "height = 9000"));
+        assert_eq!(e.field.as_deref(), Some("camera.height"));
+
+        // Beyond f32: out of range, not "not finite"; the element is named.
+        let e = err(&GOOD.replace("eye = [0.0, 0.0, 5.0]", "eye = [0.0, 0.0, 1e39]"));
+        assert_eq!(e.field.as_deref(), Some("camera.eye[2]"));
+        assert!(e.reason.contains("outside the f32 range"), "{e}");
+        let e = err(&GOOD.replace("radius = 1.0", "radius = 1e-50"));
+        assert!(e.reason.contains("outside the f32 range"), "{e}");
+        // `inf` and `nan` are TOML floats: reported as not finite by the checks.
+        let e = err(&GOOD.replace("radius = 1.0", "radius = inf"));
+        assert_eq!(e.field.as_deref(), Some("sphere[0].radius"));
+
+        // A field of view that underflows to 0 rad is too narrow, not "not > 0°".
+        let e = err(&GOOD.replace("fov_y_deg = 60.0", "fov_y_deg = 1e-45"));
+        assert_eq!(e.field.as_deref(), Some("camera.fov_y_deg"));
+        assert!(e.reason.contains("too narrow"), "{e}");
+        let e = err(&GOOD.replace("fov_y_deg = 60.0", "fov_y_deg = 0.0"));
+        assert!(e.reason.contains("greater than 0"), "{e}");
+
+        // A date where a number or array belongs is called a date.
+        for (from, to, field) in [
+            ("fov_y_deg = 60.0", "fov_y_deg = 1979-05-27", "camera.fov_y_deg"),
+            ("width = 32", "width = 1979-05-27T07:32:00Z", "camera.width"),
+            ("eye = [0.0, 0.0, 5.0]", "eye = 07:32:00", "camera.eye"),
+            (
+                "color = [255, 64, 64]",
+                "color = [255, 1979-05-27, 64]",
+                "sphere[0].color[1]",
+            ),
+        ] {
+            let e = err(&GOOD.replace(from, to));
+            assert_eq!(e.field.as_deref(), Some(field), "{to}: {e}");
+            assert!(e.reason.starts_with("invalid type: date-time "), "{to}: {e}");
+        }
+        // An inline table is still called a map.
+        let e = err(&GOOD.replace("radius = 1.0", "radius = { r = 1 }"));
+        assert!(e.reason.contains("invalid type: map"), "{e}");
+
+        // Far-away points and huge vectors are valid cameras, not "same point" or
+        // "parallel".
+        parse::<4>(&GOOD.replace("eye = [0.0, 0.0, 5.0]", "eye = [0.0, 0.0, 1e20]")).unwrap();
+        parse::<4>(&GOOD.replace("fov_y_deg", "up = [0, 3e38, 3e38]\nfov_y_deg")).unwrap();
     }
 }

@@ -326,6 +326,9 @@ fn unit_direction(from: Vec3, to: Vec3) -> Option<Vec3> {
 
 /// `v / |v|` for every finite non-zero `v`, including those whose `|v|²` overflows
 /// (components beyond ~1e19) or underflows (below ~1e-19) in f32.
+///
+/// Not inlined: called twice per camera set-up, one copy keeps firmware flash small.
+#[inline(never)]
 fn unit(v: Vec3) -> Option<Vec3> {
     // Plain normalisation first: every vector it accepts keeps bit-identical results.
     if let Some(u) = v.try_normalize() {

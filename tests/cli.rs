@@ -346,6 +346,19 @@ fn devices_and_fifos_are_written_through_and_never_replaced() {
     // A directory: refused.
     assert_refused(&run_in(&dir, &["s.toml", "-o", "."]), "directory");
 
+    // `/dev/stdout` (here a pipe): the PNG alone on stdout, the summary on stderr.
+    if Path::new("/dev/stdout").exists() {
+        let o = run_in(&dir, &["s.toml", "-o", "/dev/stdout"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let (w, h, _) = decode(&o.stdout);
+        assert_eq!((w, h), (32, 24));
+        assert!(
+            o.stdout.ends_with(b"IEND\xaeB`\x82"),
+            "bytes after the PNG on stdout"
+        );
+        assert!(stderr(&o).contains("32x24 pixels"), "{}", stderr(&o));
+    }
+
     // Device nodes need root (or CAP_MKNOD) to create.
     if !is_root(&dir) {
         println!("skipped the device-node cases: not root");

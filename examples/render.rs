@@ -6,9 +6,9 @@
 //!     [--sphere-test algebraic|geometric|robust|forward-diff|auto] [--sqrt exact|fast] [--force]
 //! ```
 //!
-//! Prints the resolution, the method, the render time and the peak memory. Any bad
-//! input (file, field or flag) is one message on stderr and exit code 2. The rules for
-//! the output (`--help` and the README say the same):
+//! Prints the resolution, the method, the render and PNG times and the peak memory.
+//! Any bad input (file, field or flag) is one message on stderr and exit code 2. The
+//! rules for the output (`--help` and the README say the same):
 //!
 //! - A regular file is written to a temporary file created exclusively (random name,
 //!   no link followed) beside it, and renamed over it only after the whole PNG is
@@ -67,7 +67,7 @@ Nothing is written when the scene does not load.
 Limits: the scene file is at most 1 MiB, at most 256 spheres, width and height at most
 8192. Worst case measured (docs/cli_worst_case.toml: 8192x8192, 256 spheres all
 enclosing the eye, so none is culled; release build on a shared 2-core AMD EPYC VM):
-158.6 s of CPU time (10.5 min wall under a load average of 8 to 10), peak memory 3.3 MB.
+158.6 s of CPU time (10.5 min wall under a load average of 8 to 10), peak memory 3,324 KB.
 The image is streamed row by row: memory grows with the width, not with the height.
 Exit codes: 0 done, 2 bad input or a failed write (one message on stderr).";
 

@@ -2,8 +2,7 @@
 //!
 //! ```text
 //! cargo run --release --example render -- scenes/lab.toml --output lab.png \
-//!     [--stepping world-space|incremental|direct] \
-//!     [--sphere-test algebraic|geometric|robust|forward-diff|auto] [--sqrt exact|fast] [--force]
+//!     [--stepping …] [--sphere-test …] [--sqrt …] [--force]   # --help lists the choices
 //! ```
 //!
 //! Prints the resolution, the method, the render and PNG times and the peak memory.
@@ -36,12 +35,18 @@ use std::time::{Duration, Instant};
 use embedded_graphics::{pixelcolor::Rgb888, prelude::*, primitives::Rectangle};
 use embedded_raytracer::{scene_file, Method, Render};
 
-/// Scene-file capacity of the CLI.
-const MAX_SPHERES: usize = 256;
+#[path = "common/standard.rs"]
+mod standard;
+use standard::MAX_SPHERES;
 
-const USAGE: &str = "usage: render SCENE.toml [--output OUT.png] [--force] \
-[--stepping world-space|incremental|direct] \
-[--sphere-test algebraic|geometric|robust|forward-diff|auto] [--sqrt exact|fast]";
+/// The usage line; the method flags list every choice from the method's own tables.
+fn usage() -> String {
+    format!(
+        "usage: render SCENE.toml [--output OUT.png] [--force] {} (default method {})",
+        standard::method_flags(),
+        Method::DEFAULT
+    )
+}
 
 /// The rest of `--help` after the usage line. The worst case was measured with
 /// `/usr/bin/time -v target/release/examples/render docs/cli_worst_case.toml --output worst.png`.
@@ -51,7 +56,7 @@ Renders a TOML scene file (see scenes/*.toml) to an 8-bit RGB PNG.
   --output, -o OUT   the PNG (default: the scene's name with .png, in the current directory)
   --force            replace a read-only output
   --stepping, --sphere-test, --sqrt
-                     the render method (default direct/auto/exact)
+                     the render method (default: the crate's Method::DEFAULT)
   --help, -h         this text
 
 Flags take their value as the next argument or after `=` (--output=out.png); a value
@@ -209,7 +214,7 @@ fn run() -> Result<(), String> {
     let args = match parse_args(std::env::args_os().skip(1))? {
         Command::Render(args) => args,
         Command::Help => {
-            let _ = writeln!(io::stdout(), "{USAGE}\n{HELP}");
+            let _ = writeln!(io::stdout(), "{}\n{HELP}", usage());
             return Ok(());
         }
     };

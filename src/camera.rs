@@ -152,7 +152,7 @@ impl Camera {
 
         // Build the view basis: w toward the look-at point, u = w × up, v = u × w.
         let w = unit_direction(eye, look_at).ok_or(CameraError::EyeAtLookAt)?;
-        let up = unit(up).ok_or(CameraError::UpParallelToView)?;
+        let up = up.try_normalize().ok_or(CameraError::UpParallelToView)?;
         let w_cross_up = w.cross(up);
         // |ŵ × ûp| = sin(angle between them).
         if !(w_cross_up.length() >= MIN_UP_ANGLE) {
@@ -290,34 +290,14 @@ impl Camera {
 
 /// The unit vector from `from` towards `to`; `None` only when they are the same point.
 /// When `to − from` overflows (points ±3e38 apart), its halves do not.
+/// ([`Vec3::try_normalize`] itself handles any finite magnitude.)
 fn unit_direction(from: Vec3, to: Vec3) -> Option<Vec3> {
     let d = to - from;
     if d.is_finite() {
-        unit(d)
+        d.try_normalize()
     } else {
-        unit(to * 0.5 - from * 0.5)
+        (to * 0.5 - from * 0.5).try_normalize()
     }
-}
-
-/// `v / |v|` for every finite non-zero `v`, including those whose `|v|²` overflows
-/// (components beyond ~1e19) or underflows (below ~1e-19) in f32.
-///
-/// Not inlined: called twice per camera set-up, one copy keeps firmware flash small.
-#[inline(never)]
-fn unit(v: Vec3) -> Option<Vec3> {
-    // Plain normalisation first: every vector it accepts keeps bit-identical results.
-    if let Some(u) = v.try_normalize() {
-        return Some(u);
-    }
-    // Otherwise divide by the largest magnitude first, so the squared length is in
-    // [1, 3] (comparisons, not `f32::max`, which is a libm call on some targets).
-    let (x, y, z) = (v.x.abs(), v.y.abs(), v.z.abs());
-    let largest = if x > y { x } else { y };
-    let largest = if largest > z { largest } else { z };
-    if !(largest > 0.0 && largest.is_finite()) {
-        return None;
-    }
-    Vec3::new(v.x / largest, v.y / largest, v.z / largest).try_normalize()
 }
 
 /// `2·tan(fov/2)/pixels`, validated.

@@ -151,7 +151,7 @@ impl Camera {
         }
 
         // Build the view basis: w toward the look-at point, u = w × up, v = u × w.
-        let w = (look_at - eye).try_normalize().ok_or(CameraError::EyeAtLookAt)?;
+        let w = unit_direction(eye, look_at).ok_or(CameraError::EyeAtLookAt)?;
         let up = up.try_normalize().ok_or(CameraError::UpParallelToView)?;
         let w_cross_up = w.cross(up);
         // |ŵ × ûp| = sin(angle between them).
@@ -285,6 +285,18 @@ impl Camera {
         let x = ((i as f32 + 0.5) - width / 2.0) * self.pixel_width;
         let y = (height / 2.0 - (j as f32 + 0.5)) * self.pixel_height;
         self.w + self.u * x + self.v * y
+    }
+}
+
+/// The unit vector from `from` towards `to`; `None` only when they are the same point.
+/// When `to − from` overflows (points ±3e38 apart), its halves do not.
+/// ([`Vec3::try_normalize`] itself handles any finite magnitude.)
+fn unit_direction(from: Vec3, to: Vec3) -> Option<Vec3> {
+    let d = to - from;
+    if d.is_finite() {
+        d.try_normalize()
+    } else {
+        (to * 0.5 - from * 0.5).try_normalize()
     }
 }
 

@@ -149,6 +149,44 @@ impl fmt::Display for SceneError {
 
 impl core::error::Error for SceneError {}
 
+/// Why [`Render::draw_band`](crate::Render::draw_band) refused a band.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BandError {
+    /// The rows are empty or reach past the image.
+    Rows {
+        /// First row asked for.
+        start: u32,
+        /// One past the last row asked for.
+        end: u32,
+        /// The image's height.
+        height: u32,
+    },
+    /// The buffer does not hold exactly `width × rows` pixels.
+    BufferSize {
+        /// `width × rows`.
+        expected: usize,
+        /// The buffer's length.
+        found: usize,
+    },
+}
+
+impl fmt::Display for BandError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            BandError::Rows { start, end, height } => write!(
+                f,
+                "rows {start}..{end} are not a non-empty range of the image's {height} rows"
+            ),
+            BandError::BufferSize { expected, found } => write!(
+                f,
+                "the band buffer holds {found} pixels; the rows need exactly {expected}"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for BandError {}
+
 impl From<SphereError> for SceneError {
     fn from(e: SphereError) -> Self {
         SceneError::Sphere(e)

@@ -144,7 +144,7 @@ pub use camera::{Camera, CameraParams};
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
-pub use error::{CameraError, CameraParam, ParseMethodError, SceneError, SphereError};
+pub use error::{BandError, CameraError, CameraParam, ParseMethodError, SceneError, SphereError};
 pub use method::{Method, SphereTest, Sqrt, Stepping};
 pub use render::{Options, Render, Sample};
 pub use scene::{Hit, Scene};

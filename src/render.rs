@@ -16,13 +16,14 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::camera::Camera;
 use crate::dispatch::{dispatch, Visit};
+use crate::error::BandError;
 use crate::frame;
 use crate::intersect::{TestStrategy, FD_ANCHOR_INTERVAL};
 use crate::math::SqrtFn;
 use crate::method::Method;
 use crate::scene::{Hit, Scene};
 use crate::shade::Lab1;
-use crate::sink::{DrawSink, RowSink, TraceSink};
+use crate::sink::{BandSink, DrawSink, RowSink, TraceSink};
 use crate::stepping::Stepper;
 use crate::vec3::Vec3;
 
@@ -188,6 +189,68 @@ impl<'a, const N: usize, C> Render<'a, N, C> {
         let full = Rectangle::new(Point::zero(), self.camera.size());
         let mut sink = TraceSink(&mut f);
         let _ = self.render(full, Point::zero(), &mut sink);
+    }
+}
+
+impl<const N: usize, C: PixelColor + From<Rgb888>> Render<'_, N, C> {
+    /// Traces rows `rows` (`j0..j1`) of the image into `buf`, row-major, one image row
+    /// (`width` pixels) after another: no `DrawTarget`, no allocation. The pixels are
+    /// the whole render's, bit for bit, for every method (a pixel never depends on the
+    /// band or clip it is drawn in), so firmware can hand one band to DMA while it
+    /// traces the next. The render's offset does not apply (rows are the image's).
+    ///
+    /// ```
+    /// use embedded_graphics::{pixelcolor::{Rgb565, Rgb888}, prelude::*};
+    /// use embedded_raytracer::{Camera, Render, Scene, Sphere, Vec3};
+    ///
+    /// static SCENE: Scene<1> = Scene::from_array(
+    ///     [Sphere::new(Vec3::new(0.0, 0.0, 0.0), 1.0, Rgb888::new(255, 0, 0))],
+    ///     Rgb888::new(0, 0, 0),
+    /// );
+    /// let camera = Camera::new(
+    ///     Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0),
+    ///     0.5, Size::new(16, 16),
+    /// )?;
+    /// let render = Render::new(&SCENE, &camera);
+    /// let mut band = [Rgb565::BLACK; 16 * 4]; // four rows
+    /// render.draw_band(6..10, &mut band)?;
+    /// assert_eq!(band[2 * 16 + 8], Rgb565::RED); // row 8, column 8: the sphere
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`BandError::Rows`] if `rows` is empty or reaches past the image's last row;
+    /// [`BandError::BufferSize`] if `buf` does not hold exactly `width × (j1 − j0)`
+    /// pixels. Nothing is traced then.
+    pub fn draw_band(&self, rows: core::ops::Range<u32>, buf: &mut [C]) -> Result<(), BandError> {
+        let size = self.camera.size();
+        if !(rows.start < rows.end && rows.end <= size.height) {
+            return Err(BandError::Rows {
+                start: rows.start,
+                end: rows.end,
+                height: size.height,
+            });
+        }
+        let expected = size.width as usize * (rows.end - rows.start) as usize;
+        if buf.len() != expected {
+            return Err(BandError::BufferSize {
+                expected,
+                found: buf.len(),
+            });
+        }
+        // The band as a clip: its rows, every column, no offset (image coordinates).
+        let band = Rectangle::new(
+            Point::new(0, rows.start as i32),
+            Size::new(size.width, rows.end - rows.start),
+        );
+        let mut sink = BandSink {
+            buf,
+            width: size.width,
+            j0: rows.start,
+        };
+        let Ok(()) = self.render(band, Point::zero(), &mut sink);
+        Ok(())
     }
 }
 

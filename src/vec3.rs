@@ -72,21 +72,21 @@ impl Vec3 {
         self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
     }
 
-    /// The unit vector in the direction of `self`, or `None` when `self` is zero, has a
-    /// subnormal largest component (its direction has lost precision) or is not finite
-    /// (so no NaN or ∞ can come out).
+    /// The unit vector in the direction of `self`, or `None` when `self` is zero or not
+    /// finite (so no NaN or ∞ can come out).
     ///
-    /// The vector is first scaled by the power of two that brings its largest component
-    /// into `[1, 2)`, so no magnitude `f32` holds makes its squared length overflow or
-    /// go subnormal. Scaling by a power of two is exact, so the result is bit for bit
-    /// what `self / |self|` gives wherever that is representable.
+    /// The vector is first scaled by a power of two that brings its largest component
+    /// near 1, so no magnitude `f32` holds, subnormal ones included, makes its squared
+    /// length overflow or go subnormal. Scaling by a power of two is exact, so the
+    /// result is bit for bit what `self / |self|` gives wherever that is representable.
     #[must_use]
     pub fn try_normalize(self) -> Option<Vec3> {
         let m = self.max_abs();
-        if !(m.is_finite() && m >= f32::MIN_POSITIVE && self.is_finite()) {
+        if !(m.is_finite() && m > 0.0 && self.is_finite()) {
             return None;
         }
-        // m = 2^e · 1.f with e in −126 … 127: scale by 2^−e (2^−127 as 2^−126 · ½).
+        // m = 2^e · 1.f with e in −126 … 127 (−127: subnormal, m ≥ 2⁻¹⁴⁹): scale by
+        // 2^−e, which is a normal f32 but for e = 127 (then 2^−126 · ½).
         let e = ((m.to_bits() >> 23) & 0xff) as i32 - 127;
         let v = self * f32::from_bits(((127 - e.min(126)) as u32) << 23);
         let v = if e > 126 { v * 0.5 } else { v };

@@ -305,3 +305,42 @@ fn no_nan_leaves_the_constructor() {
     }
     assert!(built > 10, "only {built} cameras built");
 }
+
+/// Points far apart, or a huge or tiny `up`, are valid cameras: the view direction and
+/// `up` are normalised without overflowing `|v|²` (which read as "same point" and
+/// "parallel").
+#[test]
+fn far_eyes_and_extreme_up_vectors_are_normalised() {
+    let size = Size::new(64, 48);
+    let y = Vec3::new(0.0, 1.0, 0.0);
+    let reference = Camera::new(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, y, 1.0, size).unwrap();
+    for (eye, look_at, up) in [
+        (Vec3::new(0.0, 0.0, 1e20), Vec3::ZERO, y),
+        (Vec3::new(0.0, 0.0, 3e38), Vec3::new(0.0, 0.0, -3e38), y),
+        (Vec3::new(0.0, 0.0, 1e-30), Vec3::ZERO, y),
+        (Vec3::new(0.0, 0.0, 1e-45), Vec3::ZERO, y),
+        (Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::new(0.0, 3e38, 0.0)),
+        (Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::new(0.0, 1e-40, 0.0)),
+    ] {
+        let cam = Camera::new(eye, look_at, up, 1.0, size)
+            .unwrap_or_else(|e| panic!("eye {eye:?}, look_at {look_at:?}, up {up:?}: {e}"));
+        for (name, got, want) in [
+            ("u", cam.u(), reference.u()),
+            ("v", cam.v(), reference.v()),
+            ("w", cam.w(), reference.w()),
+        ] {
+            assert_eq!(got, want, "{name} for eye {eye:?}, up {up:?}");
+        }
+    }
+    // A huge `up` at 45° to the view is accepted with the direction of (0, 1, 1).
+    let eye = Vec3::new(0.0, 0.0, 5.0);
+    let huge = Camera::new(eye, Vec3::ZERO, Vec3::new(0.0, 3e38, 3e38), 1.0, size).unwrap();
+    let plain = Camera::new(eye, Vec3::ZERO, Vec3::new(0.0, 1.0, 1.0), 1.0, size).unwrap();
+    assert!(close(huge.v(), plain.v(), 1e-6));
+    // The same point is still refused, and a zero up.
+    assert_eq!(Camera::new(eye, eye, y, 1.0, size), Err(CameraError::EyeAtLookAt));
+    assert_eq!(
+        Camera::new(eye, Vec3::ZERO, Vec3::ZERO, 1.0, size),
+        Err(CameraError::UpParallelToView)
+    );
+}

@@ -187,3 +187,503 @@ fn bad_flags_and_missing_files_exit_2() {
         assert_eq!(std::fs::read(&out).unwrap(), b"sentinel");
     }
 }
+
+// --- The output: never destroy what the CLI was not asked to write ---
+
+/// Runs the CLI with `dir` as the current directory; arguments may be any OS strings.
+fn run_in<S: AsRef<std::ffi::OsStr>>(dir: &Path, args: &[S]) -> Output {
+    Command::new(render_bin())
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Exit code 2 with one message on stderr that contains `expect`.
+fn assert_refused(o: &Output, expect: &str) {
+    let err = stderr(o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains(expect), "`{expect}` not in: {err}");
+    assert_eq!(err.trim().lines().count(), 1, "one message: {err}");
+}
+
+fn assert_rendered(o: &Output) {
+    assert!(o.status.success(), "{}", stderr(o));
+}
+
+fn is_png(bytes: &[u8]) -> bool {
+    bytes.starts_with(b"\x89PNG\r\n\x1a\n")
+}
+
+/// A fresh directory holding `s.toml`, a small good scene.
+fn scene_dir(name: &str) -> PathBuf {
+    let dir = scratch(name);
+    std::fs::write(dir.join("s.toml"), GOOD).unwrap();
+    dir
+}
+
+/// Whether this process runs as root: the owner of a file it just created.
+#[cfg(unix)]
+fn is_root(dir: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    let probe = dir.join("owner-probe");
+    std::fs::write(&probe, b"").unwrap();
+    std::fs::metadata(&probe).unwrap().uid() == 0
+}
+
+#[test]
+fn the_scene_file_is_never_the_output() {
+    let dir = scene_dir("same-file");
+    // Named directly, as the default output of a scene called `*.png`, through a
+    // symbolic link and through a hard link: all the same inode.
+    assert_refused(
+        &run_in(&dir, &["s.toml", "--output", "s.toml"]),
+        "is the scene file",
+    );
+    std::fs::write(dir.join("scene.png"), GOOD).unwrap();
+    assert_refused(&run_in(&dir, &["scene.png"]), "is the scene file");
+    assert_eq!(std::fs::read_to_string(dir.join("scene.png")).unwrap(), GOOD);
+    #[cfg(unix)]
+    std::os::unix::fs::symlink("s.toml", dir.join("link.png")).unwrap();
+    #[cfg(unix)]
+    assert_refused(&run_in(&dir, &["s.toml", "-o", "link.png"]), "is the scene file");
+    std::fs::hard_link(dir.join("s.toml"), dir.join("hard.png")).unwrap();
+    assert_refused(&run_in(&dir, &["s.toml", "-o", "hard.png"]), "is the scene file");
+    assert_eq!(std::fs::read_to_string(dir.join("s.toml")).unwrap(), GOOD);
+    // The default output beside a scene elsewhere is a different file: rendered.
+    let elsewhere = scratch("same-file-cwd");
+    assert_rendered(&run_in(&elsewhere, &[dir.join("scene.png")]));
+    assert!(is_png(&std::fs::read(elsewhere.join("scene.png")).unwrap()));
+}
+
+#[cfg(unix)]
+#[test]
+fn a_symlinked_output_writes_its_target_and_a_dangling_one_is_refused() {
+    use std::os::unix::fs::symlink;
+    let dir = scene_dir("symlink");
+    std::fs::write(dir.join("target.png"), b"old").unwrap();
+    symlink("target.png", dir.join("link.png")).unwrap();
+    assert_rendered(&run_in(&dir, &["s.toml", "-o", "link.png"]));
+    let link = std::fs::symlink_metadata(dir.join("link.png")).unwrap();
+    assert!(link.file_type().is_symlink(), "the link was replaced");
+    assert!(is_png(&std::fs::read(dir.join("target.png")).unwrap()));
+
+    symlink("nowhere/missing.png", dir.join("dangling.png")).unwrap();
+    assert_refused(&run_in(&dir, &["s.toml", "-o", "dangling.png"]), "does not exist");
+    assert!(std::fs::symlink_metadata(dir.join("dangling.png"))
+        .unwrap()
+        .file_type()
+        .is_symlink());
+}
+
+#[cfg(unix)]
+#[test]
+fn a_read_only_output_is_refused_unless_forced_and_keeps_its_permissions() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = scene_dir("read-only");
+    let out = dir.join("ro.png");
+    std::fs::write(&out, b"keep me").unwrap();
+    std::fs::set_permissions(&out, std::fs::Permissions::from_mode(0o444)).unwrap();
+    // As root the write itself would succeed: the refusal is the CLI's own rule.
+    assert_refused(&run_in(&dir, &["s.toml", "-o", "ro.png"]), "read-only");
+    assert_eq!(std::fs::read(&out).unwrap(), b"keep me");
+
+    assert_rendered(&run_in(&dir, &["s.toml", "-o", "ro.png", "--force"]));
+    assert!(is_png(&std::fs::read(&out).unwrap()));
+    let mode = std::fs::metadata(&out).unwrap().permissions().mode() & 0o7777;
+    assert_eq!(mode, 0o444, "replaced with mode {mode:o}");
+
+    // A writable file keeps its own (unusual) mode too.
+    let private = dir.join("private.png");
+    std::fs::write(&private, b"x").unwrap();
+    std::fs::set_permissions(&private, std::fs::Permissions::from_mode(0o640)).unwrap();
+    assert_rendered(&run_in(&dir, &["s.toml", "-o", "private.png"]));
+    let mode = std::fs::metadata(&private).unwrap().permissions().mode() & 0o7777;
+    assert_eq!(mode, 0o640);
+}
+
+#[cfg(unix)]
+#[test]
+fn devices_and_fifos_are_written_through_and_never_replaced() {
+    use std::os::unix::fs::{FileTypeExt, MetadataExt};
+    let dir = scene_dir("special");
+
+    // A FIFO: the PNG comes out of its other end, and it is still a FIFO.
+    let fifo = dir.join("pipe.png");
+    assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let reader = Command::new("cat")
+        .arg(&fifo)
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let o = run_in(&dir, &["s.toml", "-o", "pipe.png"]);
+    if !o.status.success() {
+        // Unblock the reader, which is waiting for a writer that never came.
+        drop(std::fs::OpenOptions::new().write(true).open(&fifo));
+    }
+    let piped = reader.wait_with_output().unwrap();
+    assert_rendered(&o);
+    assert!(
+        is_png(&piped.stdout),
+        "{} bytes through the FIFO",
+        piped.stdout.len()
+    );
+    assert!(std::fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
+
+    // A socket cannot be written as a file: refused, left in place.
+    let socket = dir.join("sock.png");
+    let _listener = std::os::unix::net::UnixListener::bind(&socket).unwrap();
+    assert_refused(&run_in(&dir, &["s.toml", "-o", "sock.png"]), "refusing");
+    assert!(std::fs::symlink_metadata(&socket)
+        .unwrap()
+        .file_type()
+        .is_socket());
+
+    // A directory: refused.
+    assert_refused(&run_in(&dir, &["s.toml", "-o", "."]), "directory");
+
+    // `/dev/stdout` (here a pipe): the PNG alone on stdout, the summary on stderr.
+    if Path::new("/dev/stdout").exists() {
+        let o = run_in(&dir, &["s.toml", "-o", "/dev/stdout"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let (w, h, _) = decode(&o.stdout);
+        assert_eq!((w, h), (32, 24));
+        assert!(
+            o.stdout.ends_with(b"IEND\xaeB`\x82"),
+            "bytes after the PNG on stdout"
+        );
+        assert!(stderr(&o).contains("32x24 pixels"), "{}", stderr(&o));
+    }
+
+    // Device nodes need root (or CAP_MKNOD) to create.
+    if !is_root(&dir) {
+        println!("skipped the device-node cases: not root");
+        return;
+    }
+    let null = dir.join("null.png");
+    let made = Command::new("mknod").arg(&null).args(["c", "1", "3"]).status();
+    if !made.is_ok_and(|s| s.success()) {
+        println!("skipped the device-node cases: mknod is not permitted here");
+        return;
+    }
+    let before = std::fs::metadata(&null).unwrap().rdev();
+    assert_rendered(&run_in(&dir, &["s.toml", "-o", "null.png"]));
+    let after = std::fs::symlink_metadata(&null).unwrap();
+    assert!(after.file_type().is_char_device(), "the device node was replaced");
+    assert_eq!(after.rdev(), before);
+    // A block device is storage, not a stream: refused (this node names no device).
+    let block = dir.join("block.png");
+    if Command::new("mknod")
+        .arg(&block)
+        .args(["b", "0", "0"])
+        .status()
+        .is_ok_and(|s| s.success())
+    {
+        assert_refused(&run_in(&dir, &["s.toml", "-o", "block.png"]), "block device");
+        assert!(std::fs::symlink_metadata(&block)
+            .unwrap()
+            .file_type()
+            .is_block_device());
+    }
+}
+
+/// A link planted where a predictable temporary name would be is never followed: the
+/// CLI is started stopped (`kill -STOP` in the shell it is then `exec`ed from, which
+/// keeps the process id), the links are planted at the names its process id gives,
+/// and only then does it continue.
+#[cfg(target_os = "linux")]
+#[test]
+fn the_temporary_file_follows_no_planted_link() {
+    let dir = scene_dir("planted");
+    let victim = dir.join("victim.txt");
+    std::fs::write(&victim, b"precious").unwrap();
+    let mut child = Command::new("sh")
+        .current_dir(&dir)
+        .args(["-c", "kill -STOP $$; exec \"$0\" \"$@\""])
+        .arg(render_bin())
+        .args(["s.toml", "--output", "out.png"])
+        .spawn()
+        .unwrap();
+    let pid = child.id();
+    // Wait until the shell has stopped itself (state `T` in /proc/PID/stat).
+    loop {
+        let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap();
+        let state = stat
+            .rsplit_once(')')
+            .unwrap()
+            .1
+            .split_whitespace()
+            .next()
+            .unwrap();
+        if state == "T" {
+            break;
+        }
+        std::thread::yield_now();
+    }
+    for name in [
+        format!(".out.png.{pid}.tmp"),
+        format!("out.png.{pid}.tmp"),
+        "out.png.tmp".to_string(),
+    ] {
+        std::os::unix::fs::symlink(&victim, dir.join(name)).unwrap();
+    }
+    assert!(Command::new("kill")
+        .args(["-CONT", &pid.to_string()])
+        .status()
+        .unwrap()
+        .success());
+    assert!(child.wait().unwrap().success());
+    assert_eq!(
+        std::fs::read(&victim).unwrap(),
+        b"precious",
+        "the PNG went through a link"
+    );
+    assert!(is_png(&std::fs::read(dir.join("out.png")).unwrap()));
+    // Nothing of the CLI's own is left behind: only the planted links end in `.tmp`.
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let entry = entry.unwrap();
+        if entry.file_name().to_string_lossy().ends_with(".tmp") {
+            assert!(
+                entry.file_type().unwrap().is_symlink(),
+                "{:?} left behind",
+                entry.file_name()
+            );
+        }
+    }
+}
+
+// --- Arguments ---
+
+#[cfg(unix)]
+#[test]
+fn non_utf8_paths_work_and_non_utf8_flags_are_one_message() {
+    use std::ffi::OsStr;
+    use std::os::unix::ffi::OsStrExt;
+    let dir = scratch("non-utf8");
+    let scene = OsStr::from_bytes(b"sc\xffene.toml");
+    std::fs::write(dir.join(scene), GOOD).unwrap();
+    // The default output keeps the name's bytes.
+    assert_rendered(&run_in(&dir, &[scene]));
+    assert!(is_png(
+        &std::fs::read(dir.join(OsStr::from_bytes(b"sc\xffene.png"))).unwrap()
+    ));
+    let out = OsStr::from_bytes(b"--output=\xfe.png");
+    assert_rendered(&run_in(&dir, &[scene, out]));
+    assert!(dir.join(OsStr::from_bytes(b"\xfe.png")).exists());
+    // A method name or a flag that is not UTF-8: one message, exit 2 (no panic).
+    let bad = OsStr::from_bytes(b"dir\xffect");
+    assert_refused(
+        &run_in(&dir, &[scene, OsStr::new("--stepping"), bad]),
+        "--stepping",
+    );
+    assert_refused(
+        &run_in(&dir, &[scene, OsStr::from_bytes(b"--\xff")]),
+        "unknown flag",
+    );
+    // A scene path that is not UTF-8 and does not exist is named in the message.
+    let missing = OsStr::from_bytes(b"mis\xffsing.toml");
+    assert_refused(&run_in(&dir, &[missing]), "sing.toml");
+}
+
+#[test]
+fn help_flag_forms_and_repeated_or_missing_values() {
+    let dir = scene_dir("flags-forms");
+    for help in ["--help", "-h"] {
+        let o = run_in(&dir, &[help]);
+        assert_eq!(o.status.code(), Some(0), "{help}: {}", stderr(&o));
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(text.starts_with("usage: render"), "{text}");
+        assert!(text.contains("Worst case measured"), "{text}");
+    }
+    // `--flag=value` forms.
+    let o = run_in(
+        &dir,
+        &[
+            "s.toml",
+            "--output=eq.png",
+            "--stepping=world-space",
+            "--sqrt=fast",
+        ],
+    );
+    assert_rendered(&o);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("world-space/auto/fast"));
+    assert!(is_png(&std::fs::read(dir.join("eq.png")).unwrap()));
+    // Given twice (in either spelling): an error naming the flag.
+    assert_refused(
+        &run_in(&dir, &["s.toml", "-o", "a.png", "--output", "b.png"]),
+        "--output is given twice",
+    );
+    assert_refused(
+        &run_in(&dir, &["s.toml", "--sqrt=fast", "--sqrt", "exact"]),
+        "--sqrt is given twice",
+    );
+    // A value that looks like a flag is not taken as one.
+    assert_refused(
+        &run_in(&dir, &["s.toml", "--output", "--stepping", "direct"]),
+        "--output needs a value",
+    );
+    assert!(!dir.join("--stepping").exists());
+    // With `=`, or after `--`, a leading `-` is a name.
+    assert_rendered(&run_in(&dir, &["s.toml", "--output=-dash.png"]));
+    assert!(dir.join("-dash.png").exists());
+    std::fs::copy(dir.join("s.toml"), dir.join("-s.toml")).unwrap();
+    assert_rendered(&run_in(&dir, &["--", "-s.toml"]));
+    assert!(dir.join("-s.png").exists());
+    assert_refused(
+        &run_in(&dir, &["s.toml", "--force=yes"]),
+        "--force takes no value",
+    );
+}
+
+// --- The scene file: regular files only, with a size cap ---
+
+#[cfg(unix)]
+#[test]
+fn the_scene_must_be_a_regular_file_of_at_most_1_mib() {
+    let dir = scratch("scene-kinds");
+    if Path::new("/dev/zero").exists() {
+        assert_refused(&run_in(&dir, &["/dev/zero"]), "not a regular file");
+    }
+    assert_refused(&run_in(&dir, &[".", "-o", "x.png"]), "not a regular file");
+
+    // A FIFO is refused without being opened. If it were opened, the writer below
+    // would feed it a good scene and the render would succeed.
+    let fifo = dir.join("scene.toml");
+    assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let writer = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::write(fifo, GOOD))
+    };
+    let o = run_in(&dir, &["scene.toml", "-o", "out.png"]);
+    assert_refused(&o, "not a regular file");
+    // Release the writer, still waiting for a reader.
+    drop(std::fs::read(&fifo));
+    writer.join().unwrap().unwrap();
+
+    // Just over the cap (a comment pads a good scene): refused, naming the cap.
+    let big = format!("{GOOD}#{}\n", "x".repeat(1 << 20));
+    std::fs::write(dir.join("big.toml"), &big).unwrap();
+    assert_refused(&run_in(&dir, &["big.toml"]), "1 MiB");
+    // Just under it: read.
+    let padding = (1 << 20) - GOOD.len() - 2;
+    std::fs::write(dir.join("fits.toml"), format!("{GOOD}#{}\n", "x".repeat(padding))).unwrap();
+    assert_eq!(std::fs::metadata(dir.join("fits.toml")).unwrap().len(), 1 << 20);
+    assert_rendered(&run_in(&dir, &["fits.toml"]));
+}
+
+#[test]
+fn too_long_arrays_are_refused_naming_the_field() {
+    let dir = scratch("long-arrays");
+    let sphere = GOOD.split_once("[[sphere]]").unwrap().1;
+    let three = format!(
+        "{GOOD}[[sphere]]{sphere}[[sphere]]{}",
+        sphere.replace("[255, 64, 64]", "[255, 64, 64, 1]")
+    );
+    std::fs::write(dir.join("s.toml"), three).unwrap();
+    assert_refused(
+        &run_in(&dir, &["s.toml"]),
+        "sphere[2].color: expected 3 values, found 4",
+    );
+    assert!(!dir.join("s.png").exists());
+}
+
+// --- The PNG: streamed, the same pixels ---
+
+/// Decoded 8-bit RGB pixels and the size of a PNG.
+fn decode(bytes: &[u8]) -> (u32, u32, Vec<u8>) {
+    let mut reader = png::Decoder::new(std::io::Cursor::new(bytes))
+        .read_info()
+        .unwrap();
+    let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut pixels).unwrap();
+    assert_eq!(
+        (info.color_type, info.bit_depth),
+        (png::ColorType::Rgb, png::BitDepth::Eight)
+    );
+    pixels.truncate(info.buffer_size());
+    (info.width, info.height, pixels)
+}
+
+#[test]
+fn the_streamed_png_has_the_renders_pixels() {
+    use embedded_graphics::pixelcolor::RgbColor;
+    use embedded_raytracer::{scene_file, Render};
+    let dir = scratch("pixels");
+    for scene in ["lab", "crowd"] {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{scene}.toml"));
+        assert_rendered(&run_in(&dir, &[path.as_os_str()]));
+        let (w, h, pixels) = decode(&std::fs::read(dir.join(format!("{scene}.png"))).unwrap());
+        let file = scene_file::load::<256>(&path).unwrap();
+        let mut expected = Vec::new();
+        Render::<256>::new(&file.scene, &file.camera)
+            .trace(|s| expected.extend([s.color.r(), s.color.g(), s.color.b()]));
+        assert_eq!((w, h), (file.camera.size().width, file.camera.size().height));
+        assert!(
+            pixels == expected,
+            "{scene}: the PNG's pixels differ from the render's"
+        );
+    }
+}
+
+/// The CLI's reported peak memory, in MB.
+fn peak_mb(o: &Output) -> f64 {
+    let out = String::from_utf8_lossy(&o.stdout);
+    let tail = out
+        .split_once("peak memory ")
+        .unwrap_or_else(|| panic!("no peak memory in: {out}"))
+        .1;
+    tail.split_whitespace().next().unwrap().parse().unwrap()
+}
+
+/// Memory grows with the width, not with the height: an 8192×512 image peaks at about
+/// the same memory as an 8192×64 one. A whole-image buffer would add at least the 11 MB
+/// of RGB of the 448 extra rows (twice that when the image was copied for the encoder).
+#[cfg(target_os = "linux")]
+#[test]
+fn memory_does_not_grow_with_the_height() {
+    let dir = scratch("memory");
+    let empty = |h: u32| {
+        format!(
+            "background = [10, 20, 30]\n[camera]\neye = [0.0, 0.0, 5.0]\nlook_at = [0.0, 0.0, 0.0]\n\
+             fov_y_deg = 60.0\nwidth = 8192\nheight = {h}\n"
+        )
+    };
+    std::fs::write(dir.join("short.toml"), empty(64)).unwrap();
+    std::fs::write(dir.join("tall.toml"), empty(512)).unwrap();
+    let short = run_in(&dir, &["short.toml"]);
+    assert_rendered(&short);
+    let tall = run_in(&dir, &["tall.toml"]);
+    assert_rendered(&tall);
+    let (short, tall) = (peak_mb(&short), peak_mb(&tall));
+    let extra_rows_mb = 8192.0 * 448.0 * 3.0 / 1e6;
+    assert!(
+        tall - short < extra_rows_mb / 8.0,
+        "peak {short} MB at 8192x64, {tall} MB at 8192x512"
+    );
+}
+
+/// The scene the `--help` and README worst-case figures were measured on is the worst
+/// the CLI accepts: the largest image, the most spheres, and every sphere enclosing the
+/// eye (so span culling removes none).
+#[test]
+fn the_measured_worst_case_is_the_worst_accepted_scene() {
+    use embedded_raytracer::camera::MAX_RESOLUTION;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/cli_worst_case.toml");
+    let file = embedded_raytracer::scene_file::load::<256>(&path).unwrap();
+    assert_eq!(
+        file.camera.size(),
+        embedded_graphics::geometry::Size::new(MAX_RESOLUTION, MAX_RESOLUTION)
+    );
+    assert_eq!(file.scene.spheres().len(), 256);
+    let eye = file.camera.eye();
+    for (k, s) in file.scene.spheres().iter().enumerate() {
+        assert!(
+            (s.center - eye).length() < s.radius,
+            "sphere {k} does not enclose the eye"
+        );
+    }
+}

@@ -24,10 +24,12 @@
 //! 4. while band 14 is on the wire: band 0 of the next frame, with the frame-time label
 //!    drawn over it; then wait for band 14 and for SPI1 to finish shifting it out.
 //!
-//! The bands are traced straight into the wire format: [`WireRgb565`] is a colour whose
-//! two bytes are the Rgb565 value high byte first, the order the ST7789 reads a 16-bit
-//! pixel in, so `draw_band` writes what DMA sends and there is no second pass over the
-//! band (it would cost a load and a store per pixel, and a third buffer to trace into).
+//! The bands are traced straight into the wire format: `WireRgb565`
+//! (`examples/common/st7789_band.rs`) is a colour whose two bytes are the Rgb565 value
+//! high byte first, the order the ST7789 reads a 16-bit pixel in, so `draw_band` writes
+//! what DMA sends and there is no second pass over the band (it would read and write
+//! every pixel once more, and need a third buffer to trace into).
+//! `examples/band_cycles.rs` estimates the cycles of this band path (README).
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(target_os = "none")]
@@ -35,19 +37,18 @@
 mod scenes;
 
 #[cfg(target_os = "none")]
+#[path = "common/st7789_band.rs"]
+mod st7789_band;
+
+#[cfg(target_os = "none")]
 mod fw {
     use core::fmt::Write as _;
 
     use cortex_m::peripheral::DWT;
     use cortex_m_rt::entry;
-    use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyleBuilder};
-    use embedded_graphics::pixelcolor::raw::RawU16;
-    use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
     use embedded_graphics::prelude::*;
-    use embedded_graphics::primitives::Rectangle;
-    use embedded_graphics::text::{Baseline, Text};
     use embedded_hal_bus::spi::ExclusiveDevice;
-    use embedded_raytracer::{Camera, Render, Vec3};
+    use embedded_raytracer::{Camera, Vec3};
     use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
     use panic_halt as _;
     use stm32f4xx_hal::{
@@ -60,14 +61,8 @@ mod fw {
     };
 
     use crate::scenes;
+    use crate::st7789_band::{draw_label, trace_band, WireRgb565, BANDS, BAND_PIXELS, HEIGHT, WIDTH};
 
-    /// The panel, in pixels.
-    const WIDTH: u32 = 240;
-    const HEIGHT: u32 = 240;
-    /// Rows per band: 240 × 16 pixels × 2 bytes = 7.5 KiB per buffer, 15 bands a frame.
-    const BAND_ROWS: u32 = 16;
-    const BANDS: u32 = HEIGHT / BAND_ROWS;
-    const BAND_PIXELS: usize = (WIDTH * BAND_ROWS) as usize;
     /// The orbit's step per frame (5°).
     const STEP: f32 = 5.0 * (core::f32::consts::PI / 180.0);
 
@@ -76,91 +71,11 @@ mod fw {
     const RASET: u8 = 0x2B;
     const RAMWR: u8 = 0x2C;
 
-    /// An Rgb565 pixel in the ST7789's wire order: its two bytes, high byte first.
-    #[derive(Clone, Copy, PartialEq, Eq)]
-    #[repr(transparent)]
-    struct WireRgb565([u8; 2]);
-
-    impl PixelColor for WireRgb565 {
-        type Raw = RawU16;
-    }
-
-    impl From<Rgb565> for WireRgb565 {
-        #[inline]
-        fn from(color: Rgb565) -> Self {
-            Self(color.into_storage().to_be_bytes())
-        }
-    }
-
-    /// The kernel's colour conversion: the same Rgb565 as the blocking example's
-    /// display gets, byte-swapped.
-    impl From<Rgb888> for WireRgb565 {
-        #[inline]
-        fn from(color: Rgb888) -> Self {
-            Self::from(Rgb565::from(color))
-        }
-    }
-
-    // SAFETY: `WireRgb565` is `repr(transparent)` over `[u8; 2]`: two initialised bytes,
-    // no padding, alignment 1, so a `[WireRgb565; N]` is readable by DMA as 2·N bytes
-    // (the length `ReadTarget`'s default method computes from `size_of_val`).
-    unsafe impl embedded_dma::ReadTarget for WireRgb565 {
-        type Word = u8;
-    }
-
     /// A band buffer: `'static`, so DMA may own it while a transfer runs.
     type Band = &'static mut [WireRgb565; BAND_PIXELS];
 
     /// SPI1 fed by DMA2 stream 3 on channel 3 (RM0090, "DMA2 request mapping").
     type BandTransfer = Transfer<Stream3<pac::DMA2>, 3, pac::SPI1, MemoryToPeripheral, Band>;
-
-    /// One band as a `DrawTarget` in image coordinates, for drawing text over the
-    /// traced pixels; pixels outside the band are dropped.
-    struct BandTarget<'a> {
-        buf: &'a mut [WireRgb565],
-        rows: Rectangle,
-    }
-
-    impl Dimensions for BandTarget<'_> {
-        fn bounding_box(&self) -> Rectangle {
-            self.rows
-        }
-    }
-
-    impl DrawTarget for BandTarget<'_> {
-        type Color = Rgb565;
-        type Error = core::convert::Infallible;
-
-        fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
-        where
-            I: IntoIterator<Item = Pixel<Self::Color>>,
-        {
-            for Pixel(p, color) in pixels {
-                if self.rows.contains(p) {
-                    // Inside the band: both differences are non-negative.
-                    let i = (p.y - self.rows.top_left.y) as usize * WIDTH as usize + p.x as usize;
-                    if let Some(pixel) = self.buf.get_mut(i) {
-                        *pixel = color.into();
-                    }
-                }
-            }
-            Ok(())
-        }
-    }
-
-    /// Traces band `k` of the frame seen by `camera` into `buf`. Without a camera (its
-    /// parameters were rejected) or if the band is refused, the band is black: the
-    /// frame still goes out whole, so the display's write pointer stays in step.
-    /// Not inlined: one copy of the render loop for both call sites.
-    #[inline(never)]
-    fn trace_band(camera: Option<&Camera>, k: u32, buf: &mut [WireRgb565]) {
-        let rows = k * BAND_ROWS..(k + 1) * BAND_ROWS;
-        let traced =
-            camera.is_some_and(|camera| Render::new(&scenes::LAB, camera).draw_band(rows, buf).is_ok());
-        if !traced {
-            buf.fill(Rgb565::BLACK.into());
-        }
-    }
 
     /// Waits until SPI1 has shifted out everything written to it (TXE, then BSY: the
     /// reference manual's order), so that DC or CS may change.
@@ -267,8 +182,8 @@ mod fw {
         let dma_config = DmaConfig::default().memory_increment(true);
 
         let (Some(mut front), Some(mut back)) = (
-            cortex_m::singleton!(: [WireRgb565; BAND_PIXELS] = [WireRgb565([0; 2]); BAND_PIXELS]),
-            cortex_m::singleton!(: [WireRgb565; BAND_PIXELS] = [WireRgb565([0; 2]); BAND_PIXELS]),
+            cortex_m::singleton!(: [WireRgb565; BAND_PIXELS] = [WireRgb565::BLACK; BAND_PIXELS]),
+            cortex_m::singleton!(: [WireRgb565; BAND_PIXELS] = [WireRgb565::BLACK; BAND_PIXELS]),
         ) else {
             panic!("band buffers taken twice");
         };
@@ -283,11 +198,6 @@ mod fw {
                 lab.look_at + Vec3::new(c * offset.x + s * offset.z, offset.y, c * offset.z - s * offset.x);
             Camera::new(eye, lab.look_at, lab.up, lab.fov_y, size).ok()
         };
-        let text_style = MonoTextStyleBuilder::new()
-            .font(&FONT_6X10)
-            .text_color(Rgb565::WHITE)
-            .background_color(Rgb565::BLACK)
-            .build();
 
         let mut angle = 0.0f32;
         let mut camera = camera_at(angle);
@@ -346,12 +256,7 @@ mod fw {
                     label,
                     "frame {frame_ms}.{frame_tenth} ms wait {wait_ms}.{wait_tenth}"
                 );
-                let mut target = BandTarget {
-                    buf: &mut back[..],
-                    rows: Rectangle::new(Point::zero(), Size::new(WIDTH, BAND_ROWS)),
-                };
-                let _ = Text::with_baseline(&label, Point::new(2, 2), text_style, Baseline::Top)
-                    .draw(&mut target);
+                draw_label(&mut back[..], &label);
             }
             let wait_start = DWT::cycle_count();
             transfer.wait();

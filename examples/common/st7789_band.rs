@@ -10,7 +10,6 @@ use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyleBuilder};
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
-use embedded_graphics::primitives::Rectangle;
 use embedded_graphics::text::{Baseline, Text};
 use embedded_raytracer::{Camera, Render};
 
@@ -87,26 +86,19 @@ pub fn draw_label(buf: &mut [WireRgb565], text: &str) {
         .text_color(Rgb565::WHITE)
         .background_color(Rgb565::BLACK)
         .build();
-    let mut target = BandTarget {
-        buf,
-        rows: Rectangle::new(Point::zero(), Size::new(WIDTH, BAND_ROWS)),
-    };
-    let Ok(_) = Text::with_baseline(text, Point::new(2, 2), style, Baseline::Top).draw(&mut target);
+    let Ok(_) = Text::with_baseline(text, Point::new(2, 2), style, Baseline::Top).draw(&mut Band0(buf));
 }
 
-/// One band as a `DrawTarget` in image coordinates; pixels outside it are dropped.
-struct BandTarget<'a> {
-    buf: &'a mut [WireRgb565],
-    rows: Rectangle,
-}
+/// Band 0 (rows 0–15) as a `DrawTarget`; pixels outside it are dropped.
+struct Band0<'a>(&'a mut [WireRgb565]);
 
-impl Dimensions for BandTarget<'_> {
-    fn bounding_box(&self) -> Rectangle {
-        self.rows
+impl OriginDimensions for Band0<'_> {
+    fn size(&self) -> Size {
+        Size::new(WIDTH, BAND_ROWS)
     }
 }
 
-impl DrawTarget for BandTarget<'_> {
+impl DrawTarget for Band0<'_> {
     type Color = Rgb565;
     type Error = core::convert::Infallible;
 
@@ -114,11 +106,12 @@ impl DrawTarget for BandTarget<'_> {
     where
         I: IntoIterator<Item = Pixel<Self::Color>>,
     {
+        let area = self.bounding_box();
         for Pixel(p, color) in pixels {
-            if self.rows.contains(p) {
-                // Inside the band: both differences are non-negative.
-                let i = (p.y - self.rows.top_left.y) as usize * WIDTH as usize + p.x as usize;
-                if let Some(pixel) = self.buf.get_mut(i) {
+            if area.contains(p) {
+                // Inside the band: both coordinates are non-negative.
+                let i = p.y as usize * WIDTH as usize + p.x as usize;
+                if let Some(pixel) = self.0.get_mut(i) {
                     *pixel = color.into();
                 }
             }

@@ -132,7 +132,9 @@ mod fw {
         let _accel_cs = gpioe.pe3.into_push_pull_output_in_state(PinState::High);
 
         // 42 MHz = 84 MHz / 2; the pins at their fastest edges, which a 42 MHz clock
-        // needs (the HAL's note on `Spi::new`). Mode 3, as in the blocking example.
+        // needs (the HAL's note on `Spi::new`). Mode 3, as in the blocking example. If
+        // a module with long wires garbles the picture, 21 MHz halves the wire rate
+        // (the frame then costs at least the 43.9 ms the wire takes).
         let sck = gpioa.pa5.into_alternate().speed(Speed::VeryHigh);
         let mosi = gpioa.pa7.into_alternate().speed(Speed::VeryHigh);
         let mut spi = Spi::new(

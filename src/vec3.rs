@@ -79,7 +79,11 @@ impl Vec3 {
     /// near 1, so no magnitude `f32` holds, subnormal ones included, makes its squared
     /// length overflow or go subnormal. Scaling by a power of two is exact, so the
     /// result is bit for bit what `self / |self|` gives wherever that is representable.
+    ///
+    /// Not inlined: a camera calls it four times, once per frame at most; one copy
+    /// keeps firmware flash small.
     #[must_use]
+    #[inline(never)]
     pub fn try_normalize(self) -> Option<Vec3> {
         let m = self.max_abs();
         if !(m.is_finite() && m > 0.0 && self.is_finite()) {

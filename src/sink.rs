@@ -36,28 +36,16 @@ impl<D: DrawTarget<Color = C>, C: PixelColor + From<Rgb888>> RowSink for DrawSin
             after,
         } = row.color_runs();
         // One iterator for the target; its `fold` (what `for_each` calls) runs each run
-        // as a loop of its own, so a background run costs the target's store alone.
+        // as a loop of its own, so a background run costs the target's store alone. The
+        // background is converted once per row; a traced colour is converted as it comes
+        // (a one-entry cache's compare cost more than converting to `Rgb888` or an RGB
+        // type: `bash .ci/cycles --quick`).
         let background = C::from(background);
         let runs = core::iter::repeat_n(background, before as usize)
-            .chain(colors(traced))
+            .chain(traced.map(C::from))
             .chain(core::iter::repeat_n(background, after as usize));
         self.target.fill_contiguous(&area, runs)
     }
-}
-
-/// The samples' colours converted to `C` through a one-entry cache: runs of background
-/// (and of a flat shade) cost a 3-byte compare instead of a conversion per pixel.
-#[inline(always)]
-fn colors<C: PixelColor + From<Rgb888>>(pixels: impl Iterator<Item = Rgb888>) -> impl Iterator<Item = C> {
-    let mut last: Option<(Rgb888, C)> = None;
-    pixels.map(move |rgb| match last {
-        Some((cached, c)) if cached == rgb => c,
-        _ => {
-            let c = C::from(rgb);
-            last = Some((rgb, c));
-            c
-        }
-    })
 }
 
 /// Rows `j0..` of the image into a caller's row-major buffer of `width`-pixel rows.
@@ -89,8 +77,8 @@ impl<C: PixelColor + From<Rgb888>> RowSink for BandSink<'_, C> {
             return Ok(());
         };
         head.fill(background);
-        for (px, c) in middle.iter_mut().zip(colors(runs.traced)) {
-            *px = c;
+        for (px, c) in middle.iter_mut().zip(runs.traced) {
+            *px = C::from(c);
         }
         tail.fill(background);
         Ok(())

@@ -94,7 +94,7 @@ fn activate<'s, const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
         let _ = active.push(Active {
             index,
             lo,
-            hi,
+            len: hi - lo,
             sphere: fs,
             state,
         });
@@ -130,9 +130,10 @@ pub(crate) struct ColorRuns<I> {
 struct Active<'s, T: TestStrategy, Sh: Shader> {
     /// Index in the scene.
     index: usize,
-    /// Columns `[lo, hi)` whose rays can hit it.
+    /// Columns `[lo, lo + len)` whose rays can hit it (as a length: one unsigned
+    /// compare per pixel tests both ends).
     lo: u32,
-    hi: u32,
+    len: u32,
     sphere: &'s FrameSphere<T, Sh>,
     /// The test's per-row state (forward differences).
     state: T::State,
@@ -228,7 +229,7 @@ impl<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> RowPixels<'_, 's, S
         // each test gets the nearest t so far as its t_max.
         let mut t_max = f32::INFINITY;
         for act in self.active.iter_mut() {
-            if i >= act.lo && i < act.hi {
+            if i.wrapping_sub(act.lo) < act.len {
                 let s = act.sphere;
                 if let Some(t) = T::hit::<Q>(&mut act.state, &s.geom, &s.test, d, a, i, t_max) {
                     t_max = t;

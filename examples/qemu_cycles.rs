@@ -85,8 +85,9 @@ mod fw {
         }
     }
 
-    /// Rows per band of the band render: 240 × 48 `Rgb888` is 34 560 bytes of stack.
-    pub const BAND_ROWS: u32 = 48;
+    /// Rows per band of the band render: three `draw_band` calls per frame, each with
+    /// its own per-frame set-up; 240 × 80 `Rgb888` is 57 600 bytes of stack.
+    pub const BAND_ROWS: u32 = 80;
 
     /// The band render under test: never inlined, like [`render`].
     #[inline(never)]

@@ -273,7 +273,7 @@ fn format_profile(program: &Program, names: &[&str], profile: &[Vec<(u64, u64)>]
             );
         }
         let mut functions: Vec<_> = by_function.into_iter().collect();
-        functions.sort_by(|a, b| b.1.cmp(&a.1));
+        functions.sort_by_key(|f| std::cmp::Reverse(f.1));
         for (f, cycles) in functions {
             let share = 100.0 * cycles as f64 / total.max(1) as f64;
             let _ = writeln!(out, "{name} | function {cycles} {share:.1} % <{f}>");
@@ -397,6 +397,16 @@ fn table(args: &[String]) -> Result<(), ModelError> {
         );
     }
 
+    if let Some(band) = find("lab-band", &default) {
+        println!(
+            "The default on `lab` traced into a band buffer instead (`Render::draw_band` into `Rgb888` bands, \
+             no `DrawTarget`, no hash: `lab-band` in `examples/qemu_cycles.rs`): {:.1} estimated cycles per \
+             pixel ({:.1} instructions), {:.1} frames/s at 168 MHz.",
+            band.per_pixel("cycles"),
+            band.per_pixel("instr"),
+            F_CLK_HZ / band.get("cycles"),
+        );
+    }
     if let Some(qemu_path) = option(args, "--qemu") {
         let qemu =
             qemu_output::QemuOutput::parse(&read(qemu_path)?).map_err(|e| ModelError(e.to_string()))?;

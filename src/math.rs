@@ -58,7 +58,8 @@ pub fn sqrt_exact(x: f32) -> f32 {
         // single-precision `thumbv7em-none-eabihf` FPU (`vfp4d16sp`) does not count as,
         // so the value travels through core registers and the scratch register s14,
         // declared clobbered (an explicit register needs no operand class): the
-        // compiler keeps nothing live in it, with no save and restore per root. Every hard-float ARM target (`eabihf`) has a VFP unit
+        // compiler keeps nothing live in it, so no root pays a save and restore. Every
+        // hard-float ARM target (`eabihf`) has a VFP unit
         // (VFPv2 or later, all of which implement VSQRT.F32) and enables it before
         // `main` (cortex-m-rt does so for `thumbv7em-none-eabihf`), so the instruction
         // exists and is enabled. It may set the FPSCR's cumulative exception bits (IXC,

@@ -3,7 +3,7 @@
 //! model and every assumption: `examples/common/cycle_model.rs`).
 //!
 //! ```text
-//! cycle_model run --disasm DISASM --trace TRACE|- --labels FIRMWARE-OUTPUT
+//! cycle_model run --disasm DISASM --trace TRACE|- --labels FIRMWARE-OUTPUT [--profile FILE]
 //! cycle_model table [DATA] [--qemu QEMU-OUTPUT]
 //! ```
 //!
@@ -21,6 +21,13 @@
 //! ```text
 //! estimate LABEL… instr N cycles C refills R ldst C1 branch C2 divsqrt C3 fp C4 int C5 cond_extra X it_fold Y store_buffer Z divides D fetch_bytes B code_bytes F code_lines L
 //! ```
+//!
+//! With `--profile FILE`, also writes where each region's cycles go: per executed
+//! instruction `LABEL… | ADDRESS COUNT CYCLES TEXT <FUNCTION>`, by address, and per
+//! function its share of the region's cycles (sort the file to find the hot loop).
+//!
+//! A region may leave out work in its middle: the instructions between a call of
+//! `cycle_region_pause` and the return of `cycle_region_resume` are not counted.
 //!
 //! A label holding `expected N` is a calibration loop: its estimate must be exactly `N`
 //! or the tool fails. Also fails on an executed instruction the timing table does not
@@ -97,6 +104,10 @@ fn run(args: &[String]) -> Result<(), ModelError> {
     let (disasm, trace, labels) = (need("--disasm")?, need("--trace")?, need("--labels")?);
     let program = Program::from_objdump(&read(disasm)?)?;
     let mut tracer = Tracer::new(&program)?;
+    let profile_path = option(args, "--profile");
+    if profile_path.is_some() {
+        tracer.profile = Some(Vec::new());
+    }
 
     // Stream the log line by line. With `-d in_asm` QEMU prints each translation block's
     // instructions once, when it translates it (`IN:`, one `0x…:` line per instruction,
@@ -220,7 +231,55 @@ fn run(args: &[String]) -> Result<(), ModelError> {
     if failures > 0 {
         return Err(ModelError(format!("{failures} region(s) failed")));
     }
+    if let (Some(path), Some(profile)) = (profile_path, &tracer.profile) {
+        let text = format_profile(&program, &names, profile);
+        std::fs::write(path, text).map_err(|e| ModelError(format!("{path}: {e}")))?;
+    }
     Ok(())
+}
+
+/// Per region: every executed instruction (address, count, cycles, text, function),
+/// then every function's cycles and share of the region's.
+fn format_profile(program: &Program, names: &[&str], profile: &[Vec<(u64, u64)>]) -> String {
+    use std::fmt::Write;
+    // The function holding an address: the last symbol starting at or before it.
+    let starts: Vec<(u32, &str)> = program
+        .symbols
+        .iter()
+        .map(|(name, &(start, _))| (start, name.as_str()))
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .collect();
+    let function = |addr: u32| {
+        let i = starts.partition_point(|&(start, _)| start <= addr);
+        i.checked_sub(1)
+            .and_then(|i| starts.get(i))
+            .map_or("?", |&(_, name)| name)
+    };
+    let mut out = String::new();
+    for (name, region) in names.iter().zip(profile) {
+        let total: u64 = region.iter().map(|&(_, c)| c).sum();
+        let mut by_function: HashMap<&str, u64> = HashMap::new();
+        for (insn, &(count, cycles)) in program.insns.iter().zip(region) {
+            if count == 0 {
+                continue;
+            }
+            let f = function(insn.addr);
+            *by_function.entry(f).or_insert(0) += cycles;
+            let _ = writeln!(
+                out,
+                "{name} | {:08x} {count} {cycles} {} <{f}>",
+                insn.addr, insn.text
+            );
+        }
+        let mut functions: Vec<_> = by_function.into_iter().collect();
+        functions.sort_by_key(|f| std::cmp::Reverse(f.1));
+        for (f, cycles) in functions {
+            let share = 100.0 * cycles as f64 / total.max(1) as f64;
+            let _ = writeln!(out, "{name} | function {cycles} {share:.1} % <{f}>");
+        }
+    }
+    out
 }
 
 fn format_counts(c: &Counts) -> String {
@@ -338,6 +397,16 @@ fn table(args: &[String]) -> Result<(), ModelError> {
         );
     }
 
+    if let Some(band) = find("lab-band", &default) {
+        println!(
+            "The default on `lab` traced into a band buffer instead (`Render::draw_band` into `Rgb888` bands, \
+             no `DrawTarget`, no hash: `lab-band` in `examples/qemu_cycles.rs`): {:.1} estimated cycles per \
+             pixel ({:.1} instructions), {:.1} frames/s at 168 MHz.",
+            band.per_pixel("cycles"),
+            band.per_pixel("instr"),
+            F_CLK_HZ / band.get("cycles"),
+        );
+    }
     if let Some(qemu_path) = option(args, "--qemu") {
         let qemu =
             qemu_output::QemuOutput::parse(&read(qemu_path)?).map_err(|e| ModelError(e.to_string()))?;

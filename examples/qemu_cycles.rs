@@ -12,12 +12,17 @@
 //! every standard scene if QEMU's semihosting command line holds the word `all`
 //! (`-semihosting-config enable=on,target=native,arg=qemu_cycles,arg=all`). Chosen at
 //! run time, so that both selections trace the same ELF: the same code, the same
-//! estimates. First, the sink alone (the `sink_only` of `qemu_cortex_m4`).
+//! estimates. First, the sink alone (the `sink_only` of `qemu_cortex_m4`); last, the
+//! default method on lab traced into a band buffer ([`Render::draw_band`], `Rgb888`,
+//! [`BAND_ROWS`](fw::BAND_ROWS) rows at a time): the path of a display driver that
+//! sends bands, without a `DrawTarget`. Its region counts the `draw_band` calls only:
+//! hashing each band (to check its pixels) lies between the pause and resume markers.
 //! Prints, after each region, the line that labels it:
 //!
 //! ```text
 //! region lab direct/auto/exact hash 0x2400e66de1ccdfed pixels 57600
 //! region sink pixelhash pixels 57600
+//! region lab-band direct/auto/exact hash 0x2400e66de1ccdfed pixels 57600
 //! ```
 //!
 //! The hashes must equal `qemu_cortex_m4`'s (`.ci/cycles` checks them against
@@ -46,7 +51,9 @@ mod fw {
     // dev-dependency) requires it in every firmware example.
     use stm32f4xx_hal as _;
 
-    use crate::cycle_region::{cycle_region_begin, cycle_region_end};
+    use crate::cycle_region::{
+        cycle_region_begin, cycle_region_end, cycle_region_pause, cycle_region_resume,
+    };
     use crate::scenes;
 
     /// Every scene is rendered at this size (its own camera otherwise).
@@ -76,6 +83,68 @@ mod fw {
             let colors = (0..SIZE.width).map(|x| Rgb888::new(x as u8, y as u8, (x ^ y) as u8));
             let Ok(()) = target.fill_contiguous(&row, colors);
         }
+    }
+
+    /// Rows per band of the band render: three `draw_band` calls per frame, each with
+    /// its own per-frame set-up; 240 × 80 `Rgb888` is 57 600 bytes of stack.
+    pub const BAND_ROWS: u32 = 80;
+
+    /// The band render under test: never inlined, like [`render`].
+    #[inline(never)]
+    fn render_band<const N: usize>(
+        scene: &Scene<N>,
+        camera: &Camera,
+        method: Method,
+        rows: core::ops::Range<u32>,
+        band: &mut [Rgb888],
+    ) -> bool {
+        Render::new(scene, camera)
+            .with_method(method)
+            .draw_band(rows, band)
+            .is_ok()
+    }
+
+    /// The whole image band by band into one buffer, each band hashed in the pause
+    /// between two band renders (the hash equals the `Drawable` render's: the same
+    /// pixels in the same order). False if a band could not be drawn.
+    fn render_bands<const N: usize>(
+        name: &str,
+        scene: &Scene<N>,
+        params: CameraParams,
+        method: Method,
+    ) -> bool {
+        let Ok(camera) = (CameraParams { size: SIZE, ..params }).build() else {
+            hprintln!("camera {}: cannot be built", name);
+            return false;
+        };
+        let mut band = [Rgb888::BLACK; (SIZE.width * BAND_ROWS) as usize];
+        let mut hash = PixelHash::new(SIZE);
+        let mut ok = true;
+        cycle_region_begin();
+        let mut j0 = 0;
+        while j0 < SIZE.height {
+            let j1 = (j0 + BAND_ROWS).min(SIZE.height);
+            let pixels = (SIZE.width * (j1 - j0)) as usize;
+            let Some(band) = band.get_mut(..pixels) else {
+                ok = false;
+                break;
+            };
+            ok &= render_band(scene, &camera, method, j0..j1, band);
+            cycle_region_pause();
+            let area = Rectangle::new(Point::new(0, j0 as i32), Size::new(SIZE.width, j1 - j0));
+            let Ok(()) = hash.fill_contiguous(&area, band.iter().copied());
+            cycle_region_resume();
+            j0 = j1;
+        }
+        cycle_region_end();
+        hprintln!(
+            "region {}-band {} hash {:#018x} pixels {}",
+            name,
+            method,
+            hash.hash(),
+            hash.pixels()
+        );
+        ok && hash.pixels() == u64::from(SIZE.width) * u64::from(SIZE.height)
     }
 
     /// Renders the methods on each scene it is given, each render between the markers.
@@ -157,6 +226,7 @@ mod fw {
         } else {
             render_scene("lab", &scenes::LAB, scenes::LAB_CAMERA, &[Method::DEFAULT])
         };
+        let ok = render_bands("lab", &scenes::LAB, scenes::LAB_CAMERA, Method::DEFAULT) && ok;
         if ok {
             hprintln!("result ok");
             debug::exit(debug::EXIT_SUCCESS);

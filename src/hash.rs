@@ -54,11 +54,18 @@ impl PixelHash {
 
     #[inline]
     fn add(&mut self, c: Rgb888) {
-        for byte in [c.r(), c.g(), c.b()] {
-            self.hash = (self.hash ^ u64::from(byte)).wrapping_mul(FNV_PRIME);
-        }
+        self.hash = fnv(self.hash, c);
         self.pixels += 1;
     }
+}
+
+/// One pixel's R, G, B bytes into the FNV-1a state `hash`.
+#[inline(always)]
+fn fnv(mut hash: u64, c: Rgb888) -> u64 {
+    for byte in [c.r(), c.g(), c.b()] {
+        hash = (hash ^ u64::from(byte)).wrapping_mul(FNV_PRIME);
+    }
+    hash
 }
 
 impl OriginDimensions for PixelHash {
@@ -86,7 +93,15 @@ impl DrawTarget for PixelHash {
         _area: &embedded_graphics::primitives::Rectangle,
         colors: I,
     ) -> Result<(), Self::Error> {
-        colors.into_iter().for_each(|c| self.add(c));
+        // The state in locals, not behind `&mut self`: inside a render's row loop the
+        // compiler would otherwise load and store it around every pixel. The count is a
+        // `usize`, like `Iterator::count`'s (a `u64` costs a second register per pixel
+        // on a 32-bit core).
+        let (hash, pixels) = colors.into_iter().fold((self.hash, 0usize), |(hash, n), c| {
+            (fnv(hash, c), n.wrapping_add(1))
+        });
+        self.hash = hash;
+        self.pixels += pixels as u64;
         Ok(())
     }
 

@@ -54,25 +54,25 @@ pub fn sqrt_exact(x: f32) -> f32 {
     {
         let root: u32;
         // SAFETY: `vsqrt.f32` computes the root in an FPU register and touches no
-        // memory but the stack slot of the `vpush`/`vpop` pair, which saves and restores
-        // s14 (rustc's `sreg` operand class needs the `vfp2` feature, which the
+        // memory. rustc's `sreg` operand class needs the `vfp2` feature, which the
         // single-precision `thumbv7em-none-eabihf` FPU (`vfp4d16sp`) does not count as,
-        // so the value travels through core registers and a scratch FPU register the
-        // block restores itself). Every hard-float ARM target (`eabihf`) has a VFP unit
+        // so the value travels through core registers and the scratch register s14,
+        // declared clobbered (an explicit register needs no operand class): the
+        // compiler keeps nothing live in it, so no root pays a save and restore. Every
+        // hard-float ARM target (`eabihf`) has a VFP unit
         // (VFPv2 or later, all of which implement VSQRT.F32) and enables it before
         // `main` (cortex-m-rt does so for `thumbv7em-none-eabihf`), so the instruction
         // exists and is enabled. It may set the FPSCR's cumulative exception bits (IXC,
         // IOC), so the block does not claim `preserves_flags`.
         unsafe {
             core::arch::asm!(
-                "vpush {{s14}}",
                 "vmov s14, {x}",
                 "vsqrt.f32 s14, s14",
                 "vmov {root}, s14",
-                "vpop {{s14}}",
                 x = in(reg) x.to_bits(),
                 root = lateout(reg) root,
-                options(pure, nomem)
+                out("s14") _,
+                options(pure, nomem, nostack)
             );
         }
         f32::from_bits(root)

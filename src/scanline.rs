@@ -94,7 +94,7 @@ fn activate<'s, const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
         let _ = active.push(Active {
             index,
             lo,
-            hi,
+            len: hi - lo,
             sphere: fs,
             state,
         });
@@ -102,13 +102,38 @@ fn activate<'s, const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
     (lo_all, hi_all)
 }
 
+/// One row as a sink takes it: every pixel as a [`Sample`] (direction, hit, colour),
+/// or only the colours as runs.
+pub(crate) trait PixelRow {
+    /// The row's pixels, left to right.
+    fn samples(self) -> impl Iterator<Item = Sample>;
+    /// The row's colours: background up to the union of the active spans, the traced
+    /// colours inside it, background after it. Outside the union no sphere can be hit,
+    /// so those pixels are not traced at all (the stepping still advances over them, so
+    /// a traced pixel's direction is the one `samples` forms).
+    fn color_runs(self) -> ColorRuns<impl Iterator<Item = Rgb888>>;
+}
+
+/// A row's colours as three runs (see [`PixelRow::color_runs`]).
+pub(crate) struct ColorRuns<I> {
+    pub background: Rgb888,
+    /// Background pixels before `traced`…
+    pub before: u32,
+    /// …the traced colours (exactly `traced_len` of them)…
+    pub traced: I,
+    pub traced_len: u32,
+    /// …and background pixels after them.
+    pub after: u32,
+}
+
 /// A sphere whose span meets the current row.
 struct Active<'s, T: TestStrategy, Sh: Shader> {
     /// Index in the scene.
     index: usize,
-    /// Columns `[lo, hi)` whose rays can hit it.
+    /// Columns `[lo, lo + len)` whose rays can hit it (as a length: one unsigned
+    /// compare per pixel tests both ends).
     lo: u32,
-    hi: u32,
+    len: u32,
     sphere: &'s FrameSphere<T, Sh>,
     /// The test's per-row state (forward differences).
     state: T::State,
@@ -131,6 +156,91 @@ struct RowPixels<'r, 's, S: Stepper, T: TestStrategy, Q, Sh: Shader> {
     sqrt: PhantomData<Q>,
 }
 
+impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> PixelRow for RowPixels<'_, '_, S, T, Q, Sh> {
+    #[inline(always)]
+    fn samples(self) -> impl Iterator<Item = Sample> {
+        self
+    }
+
+    #[inline(always)]
+    fn color_runs(mut self) -> ColorRuns<impl Iterator<Item = Rgb888>> {
+        let (lo, hi) = if self.lo_all < self.hi_all {
+            (self.lo_all, self.hi_all)
+        } else {
+            // No active span: the whole row is background.
+            (self.end, self.end)
+        };
+        let before = lo - self.i;
+        // The stepping over the skipped columns (the direct stepping's additions are
+        // dead and fold away; the incremental ones are needed for the rounding).
+        for _ in 0..before {
+            self.stepper.next_direction();
+        }
+        let background = self.background;
+        let after = self.end - hi;
+        self.i = lo;
+        self.end = hi;
+        ColorRuns {
+            background,
+            before,
+            traced_len: hi - lo,
+            traced: RowColors(self),
+            after,
+        }
+    }
+}
+
+/// The colours of a row's traced run: as [`RowPixels`]' samples, without a `Sample`'s
+/// direction and hit.
+struct RowColors<'r, 's, S: Stepper, T: TestStrategy, Q, Sh: Shader>(RowPixels<'r, 's, S, T, Q, Sh>);
+
+impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> Iterator for RowColors<'_, '_, S, T, Q, Sh> {
+    type Item = Rgb888;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<Rgb888> {
+        let row = &mut self.0;
+        let i = row.i;
+        if i >= row.end {
+            return None;
+        }
+        row.i += 1;
+        let d = row.stepper.next_direction();
+        Some(match row.closest(i, d) {
+            Some((_, t, s)) => Sh::shade(&s.shade, row.w, d, t),
+            None => row.background,
+        })
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let n = (self.0.end - self.0.i) as usize;
+        (n, Some(n))
+    }
+}
+
+impl<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> RowPixels<'_, 's, S, T, Q, Sh> {
+    /// The closest hit of the ray `d` of column `i` (inside the union of the active
+    /// spans): index, `t` and sphere.
+    #[inline(always)]
+    fn closest(&mut self, i: u32, d: Vec3) -> Option<(usize, f32, &'s FrameSphere<T, Sh>)> {
+        let mut best = None;
+        let a = d.dot(d);
+        // Closest hit over the spheres whose span holds this column, in scene order;
+        // each test gets the nearest t so far as its t_max.
+        let mut t_max = f32::INFINITY;
+        for act in self.active.iter_mut() {
+            if i.wrapping_sub(act.lo) < act.len {
+                let s = act.sphere;
+                if let Some(t) = T::hit::<Q>(&mut act.state, &s.geom, &s.test, d, a, i, t_max) {
+                    t_max = t;
+                    best = Some((act.index, t, s));
+                }
+            }
+        }
+        best
+    }
+}
+
 impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> Iterator for RowPixels<'_, '_, S, T, Q, Sh> {
     type Item = Sample;
 
@@ -144,22 +254,11 @@ impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> Iterator for RowPixels<
         self.i += 1;
         // Form the ray from the eye through the pixel centre.
         let d = self.stepper.next_direction();
-        let mut best: Option<(usize, f32, &FrameSphere<T, Sh>)> = None;
-        if i >= self.lo_all && i < self.hi_all {
-            let a = d.dot(d);
-            // Closest hit over the spheres whose span holds this column, in scene order;
-            // each test gets the nearest t so far as its t_max.
-            let mut t_max = f32::INFINITY;
-            for act in self.active.iter_mut() {
-                if i >= act.lo && i < act.hi {
-                    let s = act.sphere;
-                    if let Some(t) = T::hit::<Q>(&mut act.state, &s.geom, &s.test, d, a, i, t_max) {
-                        t_max = t;
-                        best = Some((act.index, t, s));
-                    }
-                }
-            }
-        }
+        let best = if i >= self.lo_all && i < self.hi_all {
+            self.closest(i, d)
+        } else {
+            None
+        };
         // Shade the closest hit; background where there is none.
         let (hit, color) = match best {
             Some((index, t, s)) => (

@@ -9,12 +9,13 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use crate::render::Sample;
+use crate::scanline::{ColorRuns, PixelRow};
 
 /// A consumer of rows: the pixels of `area` (one row, left to right), pulled from the
-/// scanline loop's iterator.
+/// scanline loop's row as samples or as colour runs.
 pub(crate) trait RowSink {
     type Error;
-    fn row<I: Iterator<Item = Sample>>(&mut self, area: Rectangle, pixels: I) -> Result<(), Self::Error>;
+    fn row<R: PixelRow>(&mut self, area: Rectangle, row: R) -> Result<(), Self::Error>;
 }
 
 /// Rows into a `DrawTarget`, colours converted to its colour type.
@@ -26,24 +27,25 @@ pub(crate) struct DrawSink<'t, D, C> {
 impl<D: DrawTarget<Color = C>, C: PixelColor + From<Rgb888>> RowSink for DrawSink<'_, D, C> {
     type Error = D::Error;
     #[inline(always)]
-    fn row<I: Iterator<Item = Sample>>(&mut self, area: Rectangle, pixels: I) -> Result<(), D::Error> {
-        self.target.fill_contiguous(&area, colors(pixels))
+    fn row<R: PixelRow>(&mut self, area: Rectangle, row: R) -> Result<(), D::Error> {
+        let ColorRuns {
+            background,
+            before,
+            traced,
+            traced_len: _,
+            after,
+        } = row.color_runs();
+        // One iterator for the target; its `fold` (what `for_each` calls) runs each run
+        // as a loop of its own, so a background run costs the target's store alone. The
+        // background is converted once per row; a traced colour is converted as it comes
+        // (a one-entry cache's compare cost more than converting to `Rgb888` or an RGB
+        // type: `bash .ci/cycles --quick`).
+        let background = C::from(background);
+        let runs = core::iter::repeat_n(background, before as usize)
+            .chain(traced.map(C::from))
+            .chain(core::iter::repeat_n(background, after as usize));
+        self.target.fill_contiguous(&area, runs)
     }
-}
-
-/// The samples' colours converted to `C` through a one-entry cache: runs of background
-/// (and of a flat shade) cost a 3-byte compare instead of a conversion per pixel.
-#[inline(always)]
-fn colors<C: PixelColor + From<Rgb888>>(pixels: impl Iterator<Item = Sample>) -> impl Iterator<Item = C> {
-    let mut last: Option<(Rgb888, C)> = None;
-    pixels.map(move |s| match last {
-        Some((rgb, c)) if rgb == s.color => c,
-        _ => {
-            let c = C::from(s.color);
-            last = Some((s.color, c));
-            c
-        }
-    })
 }
 
 /// Rows `j0..` of the image into a caller's row-major buffer of `width`-pixel rows.
@@ -56,16 +58,29 @@ pub(crate) struct BandSink<'b, C> {
 impl<C: PixelColor + From<Rgb888>> RowSink for BandSink<'_, C> {
     type Error = core::convert::Infallible;
     #[inline(always)]
-    fn row<I: Iterator<Item = Sample>>(&mut self, area: Rectangle, pixels: I) -> Result<(), Self::Error> {
+    fn row<R: PixelRow>(&mut self, area: Rectangle, row: R) -> Result<(), Self::Error> {
         // The area lies in the band (the render was clipped to it), so the offsets are
         // in the buffer, whose size the caller checked; `get_mut` keeps that unpanicking.
         let start = (area.top_left.y as u32).wrapping_sub(self.j0) as usize * self.width as usize
             + area.top_left.x as usize;
-        if let Some(row) = self.buf.get_mut(start..start + area.size.width as usize) {
-            for (px, c) in row.iter_mut().zip(colors(pixels)) {
-                *px = c;
-            }
+        let Some(out) = self.buf.get_mut(start..start + area.size.width as usize) else {
+            return Ok(());
+        };
+        let runs = row.color_runs();
+        let background = C::from(runs.background);
+        // The runs' lengths add up to the row's width; `split_at_mut_checked` keeps a
+        // mistake there unpanicking.
+        let Some((head, rest)) = out.split_at_mut_checked(runs.before as usize) else {
+            return Ok(());
+        };
+        let Some((middle, tail)) = rest.split_at_mut_checked(runs.traced_len as usize) else {
+            return Ok(());
+        };
+        head.fill(background);
+        for (px, c) in middle.iter_mut().zip(runs.traced) {
+            *px = C::from(c);
         }
+        tail.fill(background);
         Ok(())
     }
 }
@@ -75,8 +90,8 @@ pub(crate) struct TraceSink<'f, F>(pub &'f mut F);
 
 impl<F: FnMut(Sample)> RowSink for TraceSink<'_, F> {
     type Error = core::convert::Infallible;
-    fn row<I: Iterator<Item = Sample>>(&mut self, _area: Rectangle, pixels: I) -> Result<(), Self::Error> {
-        pixels.for_each(&mut *self.0);
+    fn row<R: PixelRow>(&mut self, _area: Rectangle, row: R) -> Result<(), Self::Error> {
+        row.samples().for_each(&mut *self.0);
         Ok(())
     }
 }

@@ -201,3 +201,55 @@ fn parses_qemu_log_lines() {
     assert_eq!(cycle_model::in_asm_pc(insn), Some(0x0800_16ae));
     assert_eq!(cycle_model::in_asm_pc(b"\n"), None);
 }
+
+#[test]
+fn a_paused_stretch_is_not_counted() {
+    // The leaf function stands in for the pause marker, `main`'s first instruction for
+    // the resume marker.
+    let disasm = DISASM
+        .replace("<leaf>:", "<cycle_region_pause>:")
+        .replace(
+            "08000108 <main>:",
+            "08000108 <cycle_region_resume>:\n 8000108: 6801         \tldr\tr1, [r0]\n\n0800010a <main>:",
+        )
+        .replacen(" 8000108: 6801         \tldr\tr1, [r0]\n", "", 1);
+    let program = Program::from_objdump(&disasm).unwrap();
+    let count = |pcs: &[u32]| {
+        let mut tracer = Tracer::new(&program).unwrap();
+        for &pc in pcs {
+            tracer.step(pc);
+        }
+        assert!(!tracer.unfinished());
+        tracer.regions[0].clone()
+    };
+    // begin; cmp, it; popeq as the call of the end marker (not counted).
+    let plain = [
+        0x0800_0100,
+        0x0800_0102,
+        0x0800_0116,
+        0x0800_0118,
+        0x0800_011a,
+        0x0800_0104,
+    ];
+    // The same with a paused stretch between cmp and it: the call of the pause marker
+    // (not counted), the marker, work in the pause, the resume marker.
+    let paused = [
+        0x0800_0100,
+        0x0800_0102,
+        0x0800_0116, // cmp
+        0x0800_0118, // the call of the pause marker
+        0x0800_011c, // pause marker: counting stops
+        0x0800_0120,
+        0x0800_010a, // paused work: two loads
+        0x0800_010c,
+        0x0800_0108, // resume marker
+        0x0800_0118, // it: counted again
+        0x0800_011a, // the call of the end marker
+        0x0800_0104,
+    ];
+    let (a, b) = (count(&plain), count(&paused));
+    // Both count cmp 1 and it 1; the paused loads are not counted.
+    assert_eq!((a.instructions, a.cycles), (2, 2));
+    assert_eq!((b.instructions, b.cycles), (2, 2));
+    assert_eq!(b.by_kind, a.by_kind);
+}

@@ -33,6 +33,11 @@ use std::fmt;
 pub const BEGIN_SYMBOL: &str = "cycle_region_begin";
 /// The firmware calls this right after a region.
 pub const END_SYMBOL: &str = "cycle_region_end";
+/// Optional: inside a region, the firmware calls this before work that is not the
+/// region's (e.g. checking a band buffer between two band renders)…
+pub const PAUSE_SYMBOL: &str = "cycle_region_pause";
+/// …and this after it; the instructions in between are not counted.
+pub const RESUME_SYMBOL: &str = "cycle_region_resume";
 
 /// Pipeline refill cycles assumed per taken branch (DDI 0439B §3.3.1, "P: the number of
 /// cycles required for a pipeline refill. This ranges from 1 to 3 depending on the
@@ -672,6 +677,10 @@ enum State {
     InBegin,
     /// Counting.
     Counting,
+    /// Inside a region, between the pause marker's call and the resume marker.
+    Paused,
+    /// Inside the resume marker's own instructions.
+    InResume,
 }
 
 /// Streams executed addresses through the model and collects one [`Counts`] per region:
@@ -681,6 +690,9 @@ pub struct Tracer<'a> {
     program: &'a Program,
     begin: (u32, u32),
     end: u32,
+    /// The pause and resume markers, if the program has them.
+    pause: Option<u32>,
+    resume: Option<(u32, u32)>,
     state: State,
     prev: Option<usize>,
     pending: Option<usize>,
@@ -690,6 +702,9 @@ pub struct Tracer<'a> {
     insn_seen: Vec<usize>,
     line_seen: Vec<usize>,
     pub regions: Vec<Counts>,
+    /// If asked for (`cycle_model run --profile`): per region, per instruction (as
+    /// the program's `insns`), how often it executed and the cycles charged to it.
+    pub profile: Option<Vec<Vec<(u64, u64)>>>,
     /// Executed addresses inside a region that are not in the disassembly.
     pub unmapped: u64,
 }
@@ -701,10 +716,14 @@ impl<'a> Tracer<'a> {
         if begin.0 == end {
             return Err(ModelError("the begin and end markers share an address".into()));
         }
+        let pause = program.symbol(PAUSE_SYMBOL).ok().map(|s| s.0);
+        let resume = program.symbol(RESUME_SYMBOL).ok();
         Ok(Tracer {
             program,
             begin,
             end,
+            pause,
+            resume,
             state: State::Idle,
             prev: None,
             pending: None,
@@ -712,6 +731,7 @@ impl<'a> Tracer<'a> {
             insn_seen: vec![0; program.insns.len()],
             line_seen: vec![0; program.index.len() / 8 + 2],
             regions: Vec::new(),
+            profile: None,
             unmapped: 0,
         })
     }
@@ -728,6 +748,9 @@ impl<'a> Tracer<'a> {
                 if !(self.begin.0..self.begin.1).contains(&pc) {
                     self.state = State::Counting;
                     self.counts = Counts::default();
+                    if let Some(profile) = &mut self.profile {
+                        profile.push(vec![(0, 0); self.program.insns.len()]);
+                    }
                     self.prev = None;
                     self.pending = None;
                     self.count(pc);
@@ -738,7 +761,24 @@ impl<'a> Tracer<'a> {
                     // The pending instruction is the call of the end marker: not counted.
                     self.regions.push(std::mem::take(&mut self.counts));
                     self.state = State::Idle;
+                } else if Some(pc) == self.pause {
+                    // Likewise the call of the pause marker.
+                    self.state = State::Paused;
                 } else {
+                    self.count(pc);
+                }
+            }
+            State::Paused => {
+                if self.resume.is_some_and(|r| r.0 == pc) {
+                    self.state = State::InResume;
+                }
+            }
+            State::InResume => {
+                if self.resume.is_some_and(|r| !(r.0..r.1).contains(&pc)) {
+                    // As after the begin marker: nothing before it pipelines.
+                    self.state = State::Counting;
+                    self.prev = None;
+                    self.pending = None;
                     self.count(pc);
                 }
             }
@@ -747,9 +787,14 @@ impl<'a> Tracer<'a> {
 
     fn count(&mut self, pc: u32) {
         let program = self.program;
-        if let Some(pending) = self.pending.and_then(|i| program.insns.get(i)) {
+        if let Some((i, pending)) = self.pending.and_then(|i| Some((i, program.insns.get(i)?))) {
             let prev = self.prev.and_then(|i| program.insns.get(i));
+            let before = self.counts.cycles;
             charge(program, pending, prev, pc, &mut self.counts);
+            if let Some(entry) = self.profile.as_mut().and_then(|p| p.last_mut()?.get_mut(i)) {
+                entry.0 += 1;
+                entry.1 += self.counts.cycles - before;
+            }
         }
         self.prev = self.pending;
         self.pending = program.at(pc);

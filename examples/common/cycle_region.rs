@@ -26,3 +26,20 @@ pub extern "C" fn cycle_region_end() {
     // SAFETY: no-op instructions.
     unsafe { asm!("nop", "nop", options(nostack, preserves_flags)) };
 }
+
+/// Inside a region, before work that is not the region's: the tool stops counting at
+/// its call…
+#[no_mangle]
+#[inline(never)]
+pub extern "C" fn cycle_region_pause() {
+    // SAFETY: no-op instructions.
+    unsafe { asm!("nop", "nop", "nop", options(nostack, preserves_flags)) };
+}
+
+/// …and counts again after it returns (see [`cycle_region_pause`]).
+#[no_mangle]
+#[inline(never)]
+pub extern "C" fn cycle_region_resume() {
+    // SAFETY: no-op instructions.
+    unsafe { asm!("nop", "nop", "nop", "nop", options(nostack, preserves_flags)) };
+}

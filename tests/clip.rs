@@ -3,10 +3,9 @@
 
 mod common;
 
-use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use embedded_raytracer::{Camera, Method, Options, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3};
+use embedded_raytracer::{Camera, Method, Options, Render, Scene, SphereTest, Sqrt, Stepping};
 
 use common::{random_case, Frame, Rng};
 
@@ -129,15 +128,7 @@ fn pinned_cases_where_the_clip_used_to_move_pixels() {
             full_width(x0, size),
         );
     }
-    let scene: Scene<1> = Scene::from_array([Sphere::new(Vec3::ZERO, 1.0, Rgb888::WHITE)], Rgb888::BLACK);
-    let camera = Camera::new(
-        Vec3::new(0.0, 0.0, 1.05),
-        Vec3::ZERO,
-        Vec3::new(0.0, 1.0, 0.0),
-        2.6,
-        Size::new(8192, 3),
-    )
-    .unwrap();
+    let (scene, camera) = common::huge_row();
     let fd = Method::new(Stepping::Direct, SphereTest::ForwardDiff, Sqrt::Exact);
     let options = Options::DEFAULT.with_anchor_interval(8192);
     let whole = common::trace(Render::new(&scene, &camera).with_method(fd).with_options(options));

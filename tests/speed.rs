@@ -154,15 +154,7 @@ fn forward_diff_error_against_k() {
 /// re-anchoring (K = 8192) flips edge pixels against the robust test; the default K does not.
 #[test]
 fn forward_diff_breaks_without_anchors_on_a_huge_row() {
-    let scene: Scene<1> = Scene::from_array([Sphere::new(Vec3::ZERO, 1.0, Rgb888::WHITE)], Rgb888::BLACK);
-    let camera = Camera::new(
-        Vec3::new(0.0, 0.0, 1.05),
-        Vec3::ZERO,
-        Vec3::new(0.0, 1.0, 0.0),
-        2.6,
-        Size::new(8192, 3),
-    )
-    .unwrap();
+    let (scene, camera) = common::huge_row();
     let fd = Method::new(Stepping::Direct, SphereTest::ForwardDiff, Sqrt::Exact);
     let robust = Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact);
     let reference = trace_k(&scene, &camera, robust, 1);

@@ -176,3 +176,22 @@ pub fn shrink(camera: &Camera, width: u32, height: u32) -> Camera {
     p.size = Size::new(width, height);
     p.build().unwrap()
 }
+
+/// One unit sphere filling 8192-wide rows from just outside it (eye 1.05 from the
+/// centre, 2.6 rad field of view, 3 rows): where forward differences drift without
+/// anchors.
+pub fn huge_row() -> (Scene<1>, Camera) {
+    let scene = Scene::from_array(
+        [Sphere::new(Vec3::ZERO, 1.0, Rgb888::new(255, 255, 255))],
+        Rgb888::new(0, 0, 0),
+    );
+    let camera = Camera::new(
+        Vec3::new(0.0, 0.0, 1.05),
+        Vec3::ZERO,
+        Vec3::new(0.0, 1.0, 0.0),
+        2.6,
+        Size::new(8192, 3),
+    )
+    .unwrap();
+    (scene, camera)
+}

@@ -111,6 +111,8 @@ pub enum SphereError {
     NotFinite,
     /// The radius is zero or negative.
     RadiusNotPositive,
+    /// Its material is invalid.
+    Material(MaterialError),
 }
 
 impl fmt::Display for SphereError {
@@ -118,13 +120,157 @@ impl fmt::Display for SphereError {
         f.write_str(match self {
             SphereError::NotFinite => "centre and radius must be finite numbers",
             SphereError::RadiusNotPositive => "radius must be greater than 0",
+            SphereError::Material(e) => return fmt::Display::fmt(e, f),
         })
     }
 }
 
+/// Why a [`Material`](crate::Material) is invalid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MaterialError {
+    /// `specular` is not in `[0, 1]`.
+    Specular,
+    /// `shininess` is not a finite number `≥ 1`.
+    Shininess,
+    /// `reflect` is not in `[0, 1]`.
+    Reflect,
+}
+
+impl MaterialError {
+    /// The scene-file key the error is about.
+    #[must_use]
+    pub const fn file_key(self) -> &'static str {
+        match self {
+            MaterialError::Specular => "specular",
+            MaterialError::Shininess => "shininess",
+            MaterialError::Reflect => "reflect",
+        }
+    }
+}
+
+impl fmt::Display for MaterialError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            MaterialError::Specular => "specular must be between 0 and 1",
+            MaterialError::Shininess => "shininess must be a finite number of at least 1",
+            MaterialError::Reflect => "reflect must be between 0 and 1",
+        })
+    }
+}
+
+impl core::error::Error for MaterialError {}
+
+/// Why a [`Light`](crate::Light) is invalid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightError {
+    /// The direction or position is NaN or infinite.
+    NotFinite,
+    /// A directional light's direction is zero.
+    ZeroDirection,
+    /// The intensity is negative, NaN or infinite.
+    Intensity,
+}
+
+impl LightError {
+    /// The scene-file key the error is about.
+    #[must_use]
+    pub const fn file_key(self) -> &'static str {
+        match self {
+            LightError::NotFinite => "direction/position",
+            LightError::ZeroDirection => "direction",
+            LightError::Intensity => "intensity",
+        }
+    }
+}
+
+impl fmt::Display for LightError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            LightError::NotFinite => "the light's direction or position must be finite numbers",
+            LightError::ZeroDirection => "a directional light's direction must not be zero",
+            LightError::Intensity => "intensity must be a finite number of at least 0",
+        })
+    }
+}
+
+impl core::error::Error for LightError {}
+
+/// Why a [`Plane`](crate::Plane) is invalid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PlaneError {
+    /// The point or normal is NaN or infinite.
+    NotFinite,
+    /// The normal is zero.
+    ZeroNormal,
+    /// `checker_size` is not a finite number `> 0`.
+    CheckerSize,
+    /// Its material is invalid.
+    Material(MaterialError),
+}
+
+impl PlaneError {
+    /// The scene-file key the error is about.
+    #[must_use]
+    pub const fn file_key(self) -> &'static str {
+        match self {
+            PlaneError::NotFinite => "point/normal",
+            PlaneError::ZeroNormal => "normal",
+            PlaneError::CheckerSize => "checker_size",
+            PlaneError::Material(e) => e.file_key(),
+        }
+    }
+}
+
+impl fmt::Display for PlaneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            PlaneError::NotFinite => "the plane's point and normal must be finite numbers",
+            PlaneError::ZeroNormal => "the plane's normal must not be zero",
+            PlaneError::CheckerSize => "checker_size must be a finite number greater than 0",
+            PlaneError::Material(e) => return fmt::Display::fmt(e, f),
+        })
+    }
+}
+
+impl core::error::Error for PlaneError {}
+
+/// Why a scene's [`Settings`](crate::Settings) are invalid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SettingsError {
+    /// `ambient` is not in `[0, 1]`.
+    Ambient,
+    /// `max_depth` exceeds what the scene type can trace (its `D`).
+    MaxDepth {
+        /// The largest depth allowed.
+        max: u8,
+    },
+}
+
+impl SettingsError {
+    /// The scene-file key the error is about.
+    #[must_use]
+    pub const fn file_key(self) -> &'static str {
+        match self {
+            SettingsError::Ambient => "ambient",
+            SettingsError::MaxDepth { .. } => "max_depth",
+        }
+    }
+}
+
+impl fmt::Display for SettingsError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SettingsError::Ambient => f.write_str("ambient must be between 0 and 1"),
+            SettingsError::MaxDepth { max } => write!(f, "max_depth must be at most {max}"),
+        }
+    }
+}
+
+impl core::error::Error for SettingsError {}
+
 impl core::error::Error for SphereError {}
 
-/// Why a sphere could not be added to a [`Scene`](crate::Scene).
+/// Why an object or setting could not be added to a [`Scene`](crate::Scene).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SceneError {
     /// The scene already holds its capacity `N` of spheres.
@@ -132,8 +278,26 @@ pub enum SceneError {
         /// The capacity.
         capacity: usize,
     },
+    /// The scene already holds its capacity `L` of lights.
+    TooManyLights {
+        /// The capacity.
+        capacity: usize,
+    },
+    /// The scene already holds its capacity `P` of planes.
+    TooManyPlanes {
+        /// The capacity.
+        capacity: usize,
+    },
+    /// A mirror (`reflect > 0`) in a scene type without reflection depth (`D = 0`).
+    MirrorWithoutDepth,
     /// The sphere itself is invalid.
     Sphere(SphereError),
+    /// The light itself is invalid.
+    Light(LightError),
+    /// The plane itself is invalid.
+    Plane(PlaneError),
+    /// The settings are invalid.
+    Settings(SettingsError),
 }
 
 impl fmt::Display for SceneError {
@@ -142,7 +306,19 @@ impl fmt::Display for SceneError {
             SceneError::Full { capacity } => {
                 write!(f, "too many spheres: the scene holds at most {capacity}")
             }
+            SceneError::TooManyLights { capacity } => {
+                write!(f, "too many lights: the scene holds at most {capacity}")
+            }
+            SceneError::TooManyPlanes { capacity } => {
+                write!(f, "too many planes: the scene holds at most {capacity}")
+            }
+            SceneError::MirrorWithoutDepth => f.write_str(
+                "reflect > 0 needs a scene type with a reflection depth (Scene<N, L, P, D> with D ≥ 1)",
+            ),
             SceneError::Sphere(e) => fmt::Display::fmt(e, f),
+            SceneError::Light(e) => fmt::Display::fmt(e, f),
+            SceneError::Plane(e) => fmt::Display::fmt(e, f),
+            SceneError::Settings(e) => fmt::Display::fmt(e, f),
         }
     }
 }
@@ -190,5 +366,23 @@ impl core::error::Error for BandError {}
 impl From<SphereError> for SceneError {
     fn from(e: SphereError) -> Self {
         SceneError::Sphere(e)
+    }
+}
+
+impl From<LightError> for SceneError {
+    fn from(e: LightError) -> Self {
+        SceneError::Light(e)
+    }
+}
+
+impl From<PlaneError> for SceneError {
+    fn from(e: PlaneError) -> Self {
+        SceneError::Plane(e)
+    }
+}
+
+impl From<SettingsError> for SceneError {
+    fn from(e: SettingsError) -> Self {
+        SceneError::Settings(e)
     }
 }

@@ -58,8 +58,18 @@ pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
 
 /// Renders one frame with the strategy types the dispatch chose: stepping `S`, sphere
 /// test `T`, square root `Q`, shader `Sh`.
-pub(crate) fn render<const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader>(
-    scene: &Scene<N>,
+pub(crate) fn render<
+    const N: usize,
+    const L: usize,
+    const P: usize,
+    const D: usize,
+    K: RowSink,
+    S: Stepper,
+    T: TestStrategy,
+    Q: SqrtFn,
+    Sh: Shader,
+>(
+    scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
     clip: Rectangle,
@@ -70,7 +80,9 @@ pub(crate) fn render<const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q:
     // once, never moved (a by-value `Frame` holding the `Vec` would be copied on
     // return, doubling the render's stack).
     let mut spheres = Vec::new();
-    let Some(frame) = Frame::<T, Sh>::new::<N, S>(scene, camera, options, clip, offset, &mut spheres) else {
+    let Some(frame) =
+        Frame::<T, Sh>::new::<N, L, P, D, S>(scene, camera, options, clip, offset, &mut spheres)
+    else {
         return Ok(()); // nothing visible
     };
     scanline::draw_rows::<N, K, S, T, Q, Sh>(&frame, sink)
@@ -83,8 +95,8 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
     /// Out of line: its temporaries (the f64 silhouette computations) are dead before
     /// the scanline loop starts, so they do not add to the pixel loop's stack.
     #[inline(never)]
-    fn new<const N: usize, S: Stepper>(
-        scene: &Scene<N>,
+    fn new<const N: usize, const L: usize, const P: usize, const D: usize, S: Stepper>(
+        scene: &Scene<N, L, P, D>,
         camera: &'a Camera,
         options: Options,
         clip: Rectangle,

@@ -121,9 +121,12 @@ pub mod error;
 mod frame;
 pub mod hash;
 pub mod intersect;
+pub mod light;
 mod limits;
+pub mod material;
 pub mod math;
 pub mod method;
+pub mod plane;
 #[cfg(host_std)]
 pub mod reference;
 pub mod render;
@@ -144,9 +147,15 @@ pub use camera::{Camera, CameraParams};
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
-pub use error::{BandError, CameraError, CameraParam, ParseMethodError, SceneError, SphereError};
+pub use error::{
+    BandError, CameraError, CameraParam, LightError, MaterialError, ParseMethodError, PlaneError, SceneError,
+    SettingsError, SphereError,
+};
+pub use light::Light;
+pub use material::Material;
 pub use method::{Method, SphereTest, Sqrt, Stepping};
+pub use plane::Plane;
 pub use render::{Options, Render, Sample};
-pub use scene::{Hit, Scene};
+pub use scene::{Hit, Scene, Settings, MAX_DEPTH};
 pub use sphere::Sphere;
 pub use vec3::Vec3;

@@ -119,8 +119,9 @@ pub struct Sample {
 /// assert_eq!(display.get_pixel(Point::new(0, 0)), Some(Rgb565::BLACK)); // background
 /// ```
 #[derive(Clone, Copy, Debug)]
-pub struct Render<'a, const N: usize, C = Rgb888> {
-    scene: &'a Scene<N>,
+pub struct Render<'a, const N: usize, C = Rgb888, const L: usize = 0, const P: usize = 0, const D: usize = 0>
+{
+    scene: &'a Scene<N, L, P, D>,
     camera: &'a Camera,
     method: Method,
     options: Options,
@@ -128,10 +129,10 @@ pub struct Render<'a, const N: usize, C = Rgb888> {
     color: PhantomData<C>,
 }
 
-impl<'a, const N: usize, C> Render<'a, N, C> {
+impl<'a, const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'a, N, C, L, P, D> {
     /// The scene through the camera with the default method, at the target's origin.
     #[must_use]
-    pub const fn new(scene: &'a Scene<N>, camera: &'a Camera) -> Self {
+    pub const fn new(scene: &'a Scene<N, L, P, D>, camera: &'a Camera) -> Self {
         Self {
             scene,
             camera,
@@ -192,7 +193,9 @@ impl<'a, const N: usize, C> Render<'a, N, C> {
     }
 }
 
-impl<const N: usize, C: PixelColor + From<Rgb888>> Render<'_, N, C> {
+impl<const N: usize, C: PixelColor + From<Rgb888>, const L: usize, const P: usize, const D: usize>
+    Render<'_, N, C, L, P, D>
+{
     /// Traces rows `rows` (`j0..j1`) of the image into `buf`, row-major, one image row
     /// (`width` pixels) after another: no `DrawTarget`, no allocation. The pixels are
     /// the whole render's, bit for bit, for every method (a pixel never depends on the
@@ -254,7 +257,7 @@ impl<const N: usize, C: PixelColor + From<Rgb888>> Render<'_, N, C> {
     }
 }
 
-impl<const N: usize, C> Drawable for Render<'_, N, C>
+impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Drawable for Render<'_, N, C, L, P, D>
 where
     C: PixelColor + From<Rgb888>,
 {
@@ -262,9 +265,9 @@ where
     type Output = ();
 
     #[inline]
-    fn draw<D>(&self, target: &mut D) -> Result<(), D::Error>
+    fn draw<Tg>(&self, target: &mut Tg) -> Result<(), Tg::Error>
     where
-        D: DrawTarget<Color = C>,
+        Tg: DrawTarget<Color = C>,
     {
         let clip = target.bounding_box();
         let mut sink = DrawSink {
@@ -275,7 +278,7 @@ where
     }
 }
 
-impl<const N: usize, C> Render<'_, N, C> {
+impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'_, N, C, L, P, D> {
     /// The frame through the one dispatch: the part of the image at `offset` that
     /// `clip` shows, into `sink`.
     #[inline(always)]
@@ -295,8 +298,8 @@ impl<const N: usize, C> Render<'_, N, C> {
 }
 
 /// Rendering one frame, as a visitor of the method's strategy types.
-struct Frame<'a, 'k, const N: usize, K> {
-    scene: &'a Scene<N>,
+struct Frame<'a, 'k, const N: usize, const L: usize, const P: usize, const D: usize, K> {
+    scene: &'a Scene<N, L, P, D>,
     camera: &'a Camera,
     options: Options,
     clip: Rectangle,
@@ -304,12 +307,14 @@ struct Frame<'a, 'k, const N: usize, K> {
     sink: &'k mut K,
 }
 
-impl<const N: usize, K: RowSink> Visit for Frame<'_, '_, N, K> {
+impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink> Visit
+    for Frame<'_, '_, N, L, P, D, K>
+{
     type Output = Result<(), K::Error>;
     #[inline(always)]
     fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Self::Output {
         // Lab #1 is the only shading model: a zero-sized strategy type.
-        frame::render::<N, K, S, T, Q, Lab1>(
+        frame::render::<N, L, P, D, K, S, T, Q, Lab1>(
             self.scene,
             self.camera,
             self.options,

@@ -6,12 +6,13 @@ use embedded_graphics::pixelcolor::Rgb888;
 use crate::dispatch::{dispatch_ray, Visit};
 use crate::error::SphereError;
 use crate::intersect::{Scale, SphereGeom, TestStrategy};
+use crate::material::Material;
 use crate::math::SqrtFn;
 use crate::method::{SphereTest, Sqrt};
 use crate::stepping::Stepper;
 use crate::vec3::Vec3;
 
-/// A sphere: centre, radius and (8-bit sRGB) colour.
+/// A sphere: centre, radius, (8-bit sRGB) colour and [`Material`] (matte by default).
 ///
 /// ```
 /// use embedded_graphics::pixelcolor::Rgb888;
@@ -34,6 +35,8 @@ pub struct Sphere {
     pub radius: f32,
     /// Object colour.
     pub color: Rgb888,
+    /// Highlight and mirror response ([`Material::DEFAULT`] unless set).
+    pub material: Material,
 }
 
 impl Sphere {
@@ -47,18 +50,35 @@ impl Sphere {
             center,
             radius,
             color,
+            material: Material::DEFAULT,
         }
+    }
+
+    /// The same sphere with another material (unchecked; [`Sphere::check`] checks it).
+    #[must_use]
+    pub const fn with_material(mut self, material: Material) -> Self {
+        self.material = material;
+        self
     }
 
     /// A sphere, checked: finite centre and radius, radius `> 0`.
     pub const fn try_new(center: Vec3, radius: f32, color: Rgb888) -> Result<Self, SphereError> {
-        if !(center.is_finite() && radius.is_finite()) {
+        Self::new(center, radius, color).check()
+    }
+
+    /// The sphere if its numbers are usable: [`Sphere::try_new`]'s rules and a valid
+    /// [`Material`].
+    pub const fn check(self) -> Result<Self, SphereError> {
+        if !(self.center.is_finite() && self.radius.is_finite()) {
             return Err(SphereError::NotFinite);
         }
-        if !(radius > 0.0) {
+        if !(self.radius > 0.0) {
             return Err(SphereError::RadiusNotPositive);
         }
-        Ok(Self::new(center, radius, color))
+        match self.material.check() {
+            Ok(_) => Ok(self),
+            Err(e) => Err(SphereError::Material(e)),
+        }
     }
 
     /// Nearest hit `t > 0` of the ray `origin + t·dir` with the chosen method (the

@@ -1,0 +1,95 @@
+//! The infinite plane primitive, optionally checkered: a floor for spheres to stand
+//! on and cast shadows onto. A scene holds up to `P` of them (`Scene<N, L, P>`).
+
+use embedded_graphics::pixelcolor::Rgb888;
+
+use crate::error::PlaneError;
+use crate::material::Material;
+use crate::vec3::Vec3;
+
+/// An infinite plane through `point` with normal `normal` (non-zero, any length).
+///
+/// With a checker colour the plane is tiled in squares of side `checker_size`: in plane
+/// coordinates `x₁ = (p − point)·e₁`, `x₂ = (p − point)·e₂` (with `n` the unit normal,
+/// `a` the world axis along which `n` has its smallest absolute component — ties x
+/// before y before z —, `e₁ = normalize(n × a)`, `e₂ = n × e₁`) a cell shows `color`
+/// where `floor(x₁/size) + floor(x₂/size)` is even and the checker colour elsewhere.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb888;
+/// use embedded_raytracer::{Plane, Vec3};
+///
+/// static FLOOR: Plane = match Plane::new(Vec3::new(0.0, -1.0, 0.0), Vec3::new(0.0, 1.0, 0.0), Rgb888::new(220, 220, 220))
+///     .with_checker(Rgb888::new(40, 40, 40), 1.0)
+///     .check()
+/// {
+///     Ok(p) => p,
+///     Err(_) => panic!("invalid plane"),
+/// };
+/// assert!(Plane::new(Vec3::ZERO, Vec3::ZERO, Rgb888::new(0, 0, 0)).check().is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plane {
+    /// A point on the plane.
+    pub point: Vec3,
+    /// The normal (non-zero; its length does not matter).
+    pub normal: Vec3,
+    /// The colour (of the even checker cells, if checkered).
+    pub color: Rgb888,
+    /// The odd cells' colour, if checkered.
+    pub checker: Option<Rgb888>,
+    /// The side of a checker cell, `> 0` (default 1).
+    pub checker_size: f32,
+    /// Highlight and mirror response.
+    pub material: Material,
+}
+
+impl Plane {
+    /// A plain plane, unchecked (see [`Plane::check`]).
+    #[must_use]
+    pub const fn new(point: Vec3, normal: Vec3, color: Rgb888) -> Self {
+        Self {
+            point,
+            normal,
+            color,
+            checker: None,
+            checker_size: 1.0,
+            material: Material::DEFAULT,
+        }
+    }
+
+    /// The same plane checkered with `second` in cells of side `size`.
+    #[must_use]
+    pub const fn with_checker(mut self, second: Rgb888, size: f32) -> Self {
+        self.checker = Some(second);
+        self.checker_size = size;
+        self
+    }
+
+    /// The same plane with another material.
+    #[must_use]
+    pub const fn with_material(mut self, material: Material) -> Self {
+        self.material = material;
+        self
+    }
+
+    /// The plane if its numbers are usable: finite point and normal, a normal that is
+    /// not zero (any non-zero length normalises: see [`Vec3::try_normalize`]), `checker_size > 0` and finite, and a
+    /// valid [`Material`].
+    pub const fn check(self) -> Result<Self, PlaneError> {
+        if !(self.point.is_finite() && self.normal.is_finite()) {
+            return Err(PlaneError::NotFinite);
+        }
+        let n = self.normal;
+        if n.x == 0.0 && n.y == 0.0 && n.z == 0.0 {
+            return Err(PlaneError::ZeroNormal);
+        }
+        if !(self.checker_size > 0.0 && self.checker_size <= f32::MAX) {
+            return Err(PlaneError::CheckerSize);
+        }
+        match self.material.check() {
+            Ok(_) => Ok(self),
+            Err(e) => Err(PlaneError::Material(e)),
+        }
+    }
+}

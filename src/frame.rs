@@ -17,8 +17,9 @@ use crate::intersect::{RowGeometry, Scale, SphereGeom, TestStrategy};
 use crate::math::SqrtFn;
 use crate::render::Options;
 use crate::scanline;
+use crate::scanline::Lab1Row;
 use crate::scene::Scene;
-use crate::shade::Shader;
+use crate::shade::{Lab1, Shader};
 use crate::sink::RowSink;
 use crate::span::Silhouette;
 use crate::sphere::Sphere;
@@ -56,8 +57,9 @@ pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
     pub offset: Point,
 }
 
-/// Renders one frame with the strategy types the dispatch chose: stepping `S`, sphere
-/// test `T`, square root `Q`, shader `Sh`.
+/// Renders one frame of a scene without lights, planes or mirrors (Lab #1 on
+/// spheres) with the strategy types the dispatch chose: stepping `S`, sphere test `T`,
+/// square root `Q`.
 pub(crate) fn render<
     const N: usize,
     const L: usize,
@@ -67,7 +69,6 @@ pub(crate) fn render<
     S: Stepper,
     T: TestStrategy,
     Q: SqrtFn,
-    Sh: Shader,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
@@ -81,11 +82,12 @@ pub(crate) fn render<
     // return, doubling the render's stack).
     let mut spheres = Vec::new();
     let Some(frame) =
-        Frame::<T, Sh>::new::<N, L, P, D, S>(scene, camera, options, clip, offset, &mut spheres)
+        Frame::<T, Lab1>::new::<N, L, P, D, S>(scene, camera, options, clip, offset, &mut spheres)
     else {
         return Ok(()); // nothing visible
     };
-    scanline::draw_rows::<N, K, S, T, Q, Sh>(&frame, sink)
+    let (w, background) = (camera.w(), frame.background);
+    scanline::draw_rows::<N, K, S, T, Q, Lab1, _>(&frame, sink, |_, _, _| Lab1Row { w, background })
 }
 
 impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
@@ -95,7 +97,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
     /// Out of line: its temporaries (the f64 silhouette computations) are dead before
     /// the scanline loop starts, so they do not add to the pixel loop's stack.
     #[inline(never)]
-    fn new<const N: usize, const L: usize, const P: usize, const D: usize, S: Stepper>(
+    pub(crate) fn new<const N: usize, const L: usize, const P: usize, const D: usize, S: Stepper>(
         scene: &Scene<N, L, P, D>,
         camera: &'a Camera,
         options: Options,

@@ -22,7 +22,6 @@ use crate::intersect::{TestStrategy, FD_ANCHOR_INTERVAL};
 use crate::math::SqrtFn;
 use crate::method::Method;
 use crate::scene::{Hit, Scene};
-use crate::shade::Lab1;
 use crate::sink::{BandSink, DrawSink, RowSink, TraceSink};
 use crate::stepping::Stepper;
 use crate::vec3::Vec3;
@@ -314,7 +313,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
     #[inline(always)]
     fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Self::Output {
         // Lab #1 is the only shading model: a zero-sized strategy type.
-        frame::render::<N, L, P, D, K, S, T, Q, Lab1>(
+        frame::render::<N, L, P, D, K, S, T, Q>(
             self.scene,
             self.camera,
             self.options,

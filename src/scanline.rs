@@ -2,6 +2,10 @@
 //! row's active spheres and their spans), then trace the row's pixels — form the ray,
 //! find the closest hit among the active spheres, shade — as the sink pulls them.
 //!
+//! What happens after the closest sphere hit is a [`RowTracer`]: [`Lab1Row`] shades it
+//! with the seed's Lab #1 (the loop of a `Scene<N>`); the scene-features path
+//! (`lit.rs`) adds planes, lights, shadow rays and mirrors.
+//!
 //! This is the only per-pixel code of the renderer. It adds, compares and calls the
 //! strategy types; everything it reads was computed once per frame (`frame.rs`) or
 //! once per row (here, before the pixel iterator starts).
@@ -18,22 +22,80 @@ use crate::intersect::{Scale, TestStrategy};
 use crate::math::SqrtFn;
 use crate::render::Sample;
 use crate::scene::Hit;
-use crate::shade::Shader;
+use crate::shade::{Lab1, Shader};
 use crate::sink::RowSink;
 use crate::stepping::{RowStep, Stepper};
 use crate::vec3::Vec3;
 
+/// What a row does with each pixel's closest sphere hit: the shading model, and any
+/// primitive beyond spheres. Built once per row.
+pub(crate) trait RowTracer<'s, T: TestStrategy, Sh: Shader> {
+    /// The colour of rays that hit nothing (the row's background runs).
+    fn background(&self) -> Rgb888;
+    /// Column `i`'s ray `d` (in the union of the spans), given its closest sphere hit
+    /// (`index`, `t` in the frame's scaled units, sphere): the object hit (spheres
+    /// first, then whatever the tracer adds) with its `t`, and the pixel's colour.
+    fn pixel(
+        &mut self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, Sh>)>,
+        i: u32,
+        d: Vec3,
+    ) -> (Option<(usize, f32)>, Rgb888);
+}
+
+/// Lab #1 on spheres: the tracer of a scene without lights, planes or mirrors.
+pub(crate) struct Lab1Row {
+    pub w: Vec3,
+    pub background: Rgb888,
+}
+
+impl<'s, T: TestStrategy> RowTracer<'s, T, Lab1> for Lab1Row {
+    #[inline(always)]
+    fn background(&self) -> Rgb888 {
+        self.background
+    }
+
+    #[inline(always)]
+    fn pixel(
+        &mut self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, Lab1>)>,
+        _i: u32,
+        d: Vec3,
+    ) -> (Option<(usize, f32)>, Rgb888) {
+        match sphere_hit {
+            Some((index, t, s)) => (Some((index, t)), Lab1::shade(&s.shade, self.w, d, t)),
+            None => (None, self.background),
+        }
+    }
+}
+
 /// Draws the frame's visible rows into the sink, one row (one iterator) at a time.
-pub(crate) fn draw_rows<const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader>(
-    frame: &Frame<'_, T, Sh>,
+/// `tracer(j, &mut lo, &mut hi)` builds row `j`'s tracer and may widen the union
+/// `[lo, hi)` of the spheres' visible spans by its own primitives' spans.
+pub(crate) fn draw_rows<
+    's,
+    const N: usize,
+    K: RowSink,
+    S: Stepper,
+    T: TestStrategy,
+    Q: SqrtFn,
+    Sh: Shader,
+    X,
+>(
+    frame: &Frame<'s, T, Sh>,
     sink: &mut K,
-) -> Result<(), K::Error> {
+    mut tracer: impl FnMut(u32, &mut u32, &mut u32) -> X,
+) -> Result<(), K::Error>
+where
+    X: RowTracer<'s, T, Sh>,
+{
     let mut stepper = S::new(frame.camera);
     let width = frame.i1 - frame.i0;
-    let mut active: Vec<Active<'_, T, Sh>, N> = Vec::new();
+    let mut active: Vec<Active<'s, T, Sh>, N> = Vec::new();
     for j in frame.j0..frame.j1 {
         let row_step = stepper.start_row(j, frame.i0);
-        let (lo_all, hi_all) = activate(frame, &mut stepper, j, &mut active);
+        let (mut lo_all, mut hi_all) = activate(frame, &mut stepper, j, &mut active);
+        let tracer = tracer(j, &mut lo_all, &mut hi_all);
         // Visible rows and columns fit in the target's i32 coordinates.
         let area = Rectangle::new(
             Point::new(
@@ -42,13 +104,12 @@ pub(crate) fn draw_rows<const N: usize, K: RowSink, S: Stepper, T: TestStrategy,
             ),
             Size::new(width, 1),
         );
-        let row = RowPixels::<S, T, Q, Sh> {
+        let row = RowPixels::<S, T, Q, Sh, X> {
             stepper: row_step,
             active: &mut active,
             lo_all,
             hi_all,
-            w: frame.camera.w(),
-            background: frame.background,
+            tracer,
             scale: frame.scale,
             i: frame.i0,
             end: frame.i1,
@@ -127,7 +188,7 @@ pub(crate) struct ColorRuns<I> {
 }
 
 /// A sphere whose span meets the current row.
-struct Active<'s, T: TestStrategy, Sh: Shader> {
+pub(crate) struct Active<'s, T: TestStrategy, Sh: Shader> {
     /// Index in the scene.
     index: usize,
     /// Columns `[lo, lo + len)` whose rays can hit it (as a length: one unsigned
@@ -140,14 +201,14 @@ struct Active<'s, T: TestStrategy, Sh: Shader> {
 }
 
 /// The pixels of one scanline, traced as the sink pulls them.
-struct RowPixels<'r, 's, S: Stepper, T: TestStrategy, Q, Sh: Shader> {
+struct RowPixels<'r, 's, S: Stepper, T: TestStrategy, Q, Sh: Shader, X> {
     stepper: S::Row,
     active: &'r mut [Active<'s, T, Sh>],
     /// Union of the active spans: outside it a pixel is background without a test.
     lo_all: u32,
     hi_all: u32,
-    w: Vec3,
-    background: Rgb888,
+    /// Shading (and primitives beyond spheres).
+    tracer: X,
     /// The frame's length scale: a hit's `t` is reported in the scene's units.
     scale: Scale,
     i: u32,
@@ -156,7 +217,9 @@ struct RowPixels<'r, 's, S: Stepper, T: TestStrategy, Q, Sh: Shader> {
     sqrt: PhantomData<Q>,
 }
 
-impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> PixelRow for RowPixels<'_, '_, S, T, Q, Sh> {
+impl<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>> PixelRow
+    for RowPixels<'_, 's, S, T, Q, Sh, X>
+{
     #[inline(always)]
     fn samples(self) -> impl Iterator<Item = Sample> {
         self
@@ -176,7 +239,7 @@ impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> PixelRow for RowPixels<
         for _ in 0..before {
             self.stepper.next_direction();
         }
-        let background = self.background;
+        let background = self.tracer.background();
         let after = self.end - hi;
         self.i = lo;
         self.end = hi;
@@ -192,9 +255,11 @@ impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> PixelRow for RowPixels<
 
 /// The colours of a row's traced run: as [`RowPixels`]' samples, without a `Sample`'s
 /// direction and hit.
-struct RowColors<'r, 's, S: Stepper, T: TestStrategy, Q, Sh: Shader>(RowPixels<'r, 's, S, T, Q, Sh>);
+struct RowColors<'r, 's, S: Stepper, T: TestStrategy, Q, Sh: Shader, X>(RowPixels<'r, 's, S, T, Q, Sh, X>);
 
-impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> Iterator for RowColors<'_, '_, S, T, Q, Sh> {
+impl<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>> Iterator
+    for RowColors<'_, 's, S, T, Q, Sh, X>
+{
     type Item = Rgb888;
 
     #[inline(always)]
@@ -206,10 +271,8 @@ impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> Iterator for RowColors<
         }
         row.i += 1;
         let d = row.stepper.next_direction();
-        Some(match row.closest(i, d) {
-            Some((_, t, s)) => Sh::shade(&s.shade, row.w, d, t),
-            None => row.background,
-        })
+        let best = row.closest(i, d);
+        Some(row.tracer.pixel(best, i, d).1)
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
@@ -218,7 +281,7 @@ impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> Iterator for RowColors<
     }
 }
 
-impl<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> RowPixels<'_, 's, S, T, Q, Sh> {
+impl<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X> RowPixels<'_, 's, S, T, Q, Sh, X> {
     /// The closest hit of the ray `d` of column `i` (inside the union of the active
     /// spans): index, `t` and sphere.
     #[inline(always)]
@@ -241,7 +304,9 @@ impl<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> RowPixels<'_, 's, S
     }
 }
 
-impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> Iterator for RowPixels<'_, '_, S, T, Q, Sh> {
+impl<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>> Iterator
+    for RowPixels<'_, 's, S, T, Q, Sh, X>
+{
     type Item = Sample;
 
     #[inline(always)]
@@ -260,16 +325,11 @@ impl<S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader> Iterator for RowPixels<
             None
         };
         // Shade the closest hit; background where there is none.
-        let (hit, color) = match best {
-            Some((index, t, s)) => (
-                Some(Hit {
-                    index,
-                    t: self.scale.unscale_t(t),
-                }),
-                Sh::shade(&s.shade, self.w, d, t),
-            ),
-            None => (None, self.background),
-        };
+        let (hit, color) = self.tracer.pixel(best, i, d);
+        let hit = hit.map(|(index, t)| Hit {
+            index,
+            t: self.scale.unscale_t(t),
+        });
         Some(Sample {
             pixel,
             direction: d,

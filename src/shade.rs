@@ -9,15 +9,15 @@ use crate::intersect::{Scale, SphereGeom};
 use crate::sphere::Sphere;
 use crate::vec3::Vec3;
 
-/// A shading model as a strategy type: the scanline loop is monomorphised over it.
+/// A shading model as a strategy type: its per-sphere constants, built by the frame
+/// with the geometry; the scanline loop is monomorphised over it. How a hit is shaded
+/// is the row tracer's (`scanline.rs`'s `Lab1Row`, `lit.rs`).
 pub(crate) trait Shader {
     /// Per-frame, per-object constants (built once per frame with the geometry).
     type Object: Copy;
     /// The constants of `sphere`, whose eye-relative geometry is `g` (lengths scaled by
     /// `scale`); `w` is the camera's view direction.
     fn object(sphere: &Sphere, g: &SphereGeom, scale: Scale, w: Vec3) -> Self::Object;
-    /// The colour of the hit at `t` along the primary ray `eye + t·d`.
-    fn shade(o: &Self::Object, w: Vec3, d: Vec3, t: f32) -> Rgb888;
 }
 
 /// The seed's Lab #1 shading ([`lab1`]) as a [`Shader`].
@@ -45,9 +45,12 @@ impl Shader for Lab1 {
             rgb: channels(sphere.color),
         }
     }
+}
 
+impl Lab1 {
+    /// The colour of the hit at `t` along the primary ray `eye + t·d`.
     #[inline(always)]
-    fn shade(o: &Lab1Object, w: Vec3, d: Vec3, t: f32) -> Rgb888 {
+    pub(crate) fn shade(o: &Lab1Object, w: Vec3, d: Vec3, t: f32) -> Rgb888 {
         // The view-space normal n·(−w) = ((L − t·d)·w)/r, camera-relative so |eye|
         // does not cost precision.
         let n_z = (o.lw - t * d.dot(w)) * o.inv_r;

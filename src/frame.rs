@@ -82,7 +82,7 @@ pub(crate) fn render<
     // return, doubling the render's stack).
     let mut spheres = Vec::new();
     let Some(frame) =
-        Frame::<T, Lab1>::new::<N, L, P, D, S>(scene, camera, options, clip, offset, &mut spheres)
+        Frame::<T, Lab1>::new::<N, L, P, D, S>(scene, camera, options, clip, offset, &mut spheres, 0.0)
     else {
         return Ok(()); // nothing visible
     };
@@ -92,7 +92,10 @@ pub(crate) fn render<
 
 impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
     /// Clips the image (placed at `offset`) to `clip` and builds every sphere's
-    /// per-frame constants into `spheres`; `None` if nothing is visible.
+    /// per-frame constants into `spheres`; `None` if nothing is visible. `others` is
+    /// the largest eye-relative magnitude of the scene's other primitives (planes,
+    /// point lights), which the frame's [`Scale`] must cover too (0 when there are
+    /// none).
     ///
     /// Out of line: its temporaries (the f64 silhouette computations) are dead before
     /// the scanline loop starts, so they do not add to the pixel loop's stack.
@@ -104,6 +107,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         clip: Rectangle,
         offset: Point,
         spheres: &'a mut Vec<FrameSphere<T, Sh>, N>,
+        others: f32,
     ) -> Option<Self> {
         let size = camera.size();
         // Clip in i64: no overflow for any offset or target size. A target whose box
@@ -131,7 +135,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         // scaled units (see `Scale`), so the usual frame pays one comparison per sphere.
         let mut scale = Scale(1.0);
         loop {
-            let mut largest = 0.0f32;
+            let mut largest = others;
             // A push loop, not `collect()`: heapless' `FromIterator` panics on overflow,
             // and the optimiser cannot see that a `Scene<N>` never holds more than N.
             spheres.clear();

@@ -49,6 +49,20 @@ impl SphereGeom {
             c: l2 - r2,
         }
     }
+
+    /// The same sphere seen from `o` (relative to this geometry's origin, same units):
+    /// a secondary ray's origin on a surface.
+    #[inline(always)]
+    pub(crate) fn seen_from(&self, o: Vec3) -> Self {
+        let l = self.l - o;
+        let l2 = l.dot(l);
+        Self {
+            l,
+            l2,
+            r2: self.r2,
+            c: l2 - self.r2,
+        }
+    }
 }
 
 /// The power of two a frame's (or a query's) eye-relative lengths are multiplied by
@@ -70,7 +84,8 @@ impl Scale {
     pub(crate) fn for_magnitude(m: f32) -> Self {
         const LO: f32 = 1.0 / 1_099_511_627_776.0; // 2⁻⁴⁰
         const HI: f32 = 1_099_511_627_776.0; // 2⁴⁰
-        if (LO..=HI).contains(&m) || !m.is_finite() {
+                                             // Nothing to scale (no primitive, or all at the eye) keeps scale 1.
+        if (LO..=HI).contains(&m) || !m.is_finite() || m == 0.0 {
             return Scale(1.0);
         }
         // m = 2^e · 1.f; the scale is 2^−e, with e kept where 2^−e is a normal f32.

@@ -123,6 +123,7 @@ pub mod hash;
 pub mod intersect;
 pub mod light;
 mod limits;
+mod lit;
 pub mod material;
 pub mod math;
 pub mod method;
@@ -152,6 +153,7 @@ pub use error::{
     SettingsError, SphereError,
 };
 pub use light::Light;
+pub use lit::SecondaryOrigin;
 pub use material::Material;
 pub use method::{Method, SphereTest, Sqrt, Stepping};
 pub use plane::Plane;

@@ -19,6 +19,7 @@ use crate::dispatch::{dispatch, Visit};
 use crate::error::BandError;
 use crate::frame;
 use crate::intersect::{TestStrategy, FD_ANCHOR_INTERVAL};
+use crate::lit::{self, SecondaryOrigin};
 use crate::math::SqrtFn;
 use crate::method::Method;
 use crate::scene::{Hit, Scene};
@@ -36,7 +37,7 @@ use crate::vec3::Vec3;
 /// assert!(o.span_culling);
 /// assert_eq!(o.anchor_interval, FD_ANCHOR_INTERVAL);
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Options {
     /// Span culling (default on): a sphere is tested only in the columns of each row
     /// that its silhouette, enlarged by the test's and the stepping's proven rounding
@@ -49,6 +50,14 @@ pub struct Options {
     /// directly every K columns. The edge error bound grows with K (see
     /// [`SphereTest::ForwardDiff`](crate::SphereTest::ForwardDiff)); for measuring it.
     pub anchor_interval: u32,
+    /// Where shadow and reflection rays start (default [`SecondaryOrigin::Convex`]: no
+    /// epsilon). Only scenes with lights or mirrors trace such rays.
+    pub secondary: SecondaryOrigin,
+    /// Shadow rays stop at the first occluder, testing first the one that shadowed the
+    /// previous pixel (default on). Off, every object is tested for every shadow ray,
+    /// as a closest-hit search would — the benchmarks' literal baseline; no pixel
+    /// changes.
+    pub shadow_any_hit: bool,
 }
 
 impl Options {
@@ -56,6 +65,8 @@ impl Options {
     pub const DEFAULT: Options = Options {
         span_culling: true,
         anchor_interval: FD_ANCHOR_INTERVAL,
+        secondary: SecondaryOrigin::Convex,
+        shadow_any_hit: true,
     };
 }
 
@@ -71,6 +82,20 @@ impl Options {
     #[must_use]
     pub const fn with_anchor_interval(mut self, k: u32) -> Self {
         self.anchor_interval = k;
+        self
+    }
+
+    /// The same options with secondary rays starting as `secondary` says.
+    #[must_use]
+    pub const fn with_secondary(mut self, secondary: SecondaryOrigin) -> Self {
+        self.secondary = secondary;
+        self
+    }
+
+    /// The same options with any-hit shadow rays on or off.
+    #[must_use]
+    pub const fn with_shadow_any_hit(mut self, on: bool) -> Self {
+        self.shadow_any_hit = on;
         self
     }
 }
@@ -312,14 +337,26 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
     type Output = Result<(), K::Error>;
     #[inline(always)]
     fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Self::Output {
-        // Lab #1 is the only shading model: a zero-sized strategy type.
-        frame::render::<N, L, P, D, K, S, T, Q>(
-            self.scene,
-            self.camera,
-            self.options,
-            self.clip,
-            self.offset,
-            self.sink,
-        )
+        // The scene's type decides the loop at compile time: Lab #1 on spheres, or the
+        // scene-features path (lights, planes, mirrors).
+        if Scene::<N, L, P, D>::FEATURES {
+            lit::render::<N, L, P, D, K, S, T, Q>(
+                self.scene,
+                self.camera,
+                self.options,
+                self.clip,
+                self.offset,
+                self.sink,
+            )
+        } else {
+            frame::render::<N, L, P, D, K, S, T, Q>(
+                self.scene,
+                self.camera,
+                self.options,
+                self.clip,
+                self.offset,
+                self.sink,
+            )
+        }
     }
 }

@@ -131,7 +131,6 @@ pub struct Hit {
 impl<const N: usize, const L: usize, const P: usize, const D: usize> Scene<N, L, P, D> {
     /// Whether the type has anything beyond Lab #1 spheres (lights, planes or mirrors):
     /// decided at compile time, so `Scene<N>` links only the Lab #1 loop.
-    #[allow(dead_code)]
     pub(crate) const FEATURES: bool = L > 0 || P > 0 || D > 0;
 
     /// The default settings with the depth the type allows (`min(2, D)`).

@@ -86,7 +86,7 @@ pub fn lab1(color: Rgb888, n_z: f32) -> Rgb888 {
 /// loop does not convert them per hit.
 #[must_use]
 #[inline]
-fn channels(color: Rgb888) -> [f32; 3] {
+pub(crate) fn channels(color: Rgb888) -> [f32; 3] {
     [f32::from(color.r()), f32::from(color.g()), f32::from(color.b())]
 }
 

@@ -20,7 +20,9 @@ pub use standard::{load, path, MAX_SPHERES, SCENES};
 pub type Traced = (Option<(usize, u32)>, Rgb888, [u32; 3]);
 
 /// Every pixel of `render`, row-major.
-pub fn trace<const N: usize>(render: Render<'_, N, Rgb888>) -> Vec<Traced> {
+pub fn trace<const N: usize, const L: usize, const P: usize, const D: usize>(
+    render: Render<'_, N, Rgb888, L, P, D>,
+) -> Vec<Traced> {
     let mut out = Vec::new();
     render.trace(|s| {
         out.push((

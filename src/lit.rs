@@ -39,6 +39,7 @@ use crate::scanline::{self, RowTracer};
 use crate::scene::Scene;
 use crate::shade::{channels, Shader, AMBIENT};
 use crate::sink::RowSink;
+use crate::span::{Margin, Silhouette};
 use crate::sphere::Sphere;
 use crate::stepping::Stepper;
 use crate::vec3::Vec3;
@@ -229,8 +230,11 @@ impl FrameLight {
 type Object = usize;
 
 /// Per-frame state of the scene-features path.
-struct LitFrame<'a, T: TestStrategy> {
+struct LitFrame<'a, T: TestStrategy, const N: usize, const L: usize> {
     spheres: &'a [FrameSphere<T, LitSphere>],
+    /// Per light and sphere: where on the image the sphere's shadow on the first plane
+    /// can be (see [`shadow_silhouette`]).
+    shadow: &'a [[Silhouette; N]; L],
     planes: &'a [FramePlane],
     lights: &'a [FrameLight],
     camera: &'a Camera,
@@ -355,8 +359,20 @@ fn render_with<
     let d_max = f64::from(camera.first_direction().length())
         + f64::from(size.width) * f64::from(camera.pixel_step().length())
         + f64::from(size.height) * f64::from(camera.scanline_step().length());
+    // Shadow spans: per light and sphere, the image region where the sphere's shadow on
+    // the first plane can fall — outside it a floor pixel does not test that sphere.
+    let step_err = S::error_bound(camera);
+    let mut shadow = [[Silhouette::All; N]; L];
+    if let (true, Some(floor)) = (options.span_culling, planes.first()) {
+        for (row, light) in shadow.iter_mut().zip(&lights) {
+            for (sil, fs) in row.iter_mut().zip(frame.spheres) {
+                *sil = shadow_silhouette(light, &fs.geom, floor, camera, step_err);
+            }
+        }
+    }
     let lit = LitFrame {
         spheres: frame.spheres,
+        shadow: &shadow,
         planes: &planes,
         lights: &lights,
         camera,
@@ -374,17 +390,20 @@ fn render_with<
         i1: frame.i1,
     };
     scanline::draw_rows::<N, K, S, T, Q, LitSphere, _>(&frame, sink, |j, lo, hi| {
-        LitRow::<T, Q, O, L, P, D>::new(&lit, j, lo, hi)
+        LitRow::<T, Q, O, N, L, P, D>::new(&lit, j, lo, hi)
     })
 }
 
-/// One row of the scene-features path: the planes' spans and, per light, the object
-/// that last shadowed a pixel of the row (tested first: neighbouring pixels are
-/// usually shadowed by the same occluder).
-struct LitRow<'f, 's, T: TestStrategy, Q, O, const L: usize, const P: usize, const D: usize> {
-    f: &'f LitFrame<'s, T>,
+/// One row of the scene-features path: the planes' spans, the shadow spans and, per
+/// light, the object that last shadowed a pixel of the row (tested first: neighbouring
+/// pixels are usually shadowed by the same occluder).
+struct LitRow<'f, 's, T: TestStrategy, Q, O, const N: usize, const L: usize, const P: usize, const D: usize> {
+    f: &'f LitFrame<'s, T, N, L>,
     /// Per plane: columns `[lo, lo + len)` whose rays can hit it.
     spans: [(u32, u32); P],
+    /// Per light and sphere: columns `[lo, lo + len)` of this row where the sphere's
+    /// shadow on the first plane can be.
+    shadow: [[(u32, u32); N]; L],
     occluder: [Object; L],
     marker: core::marker::PhantomData<(Q, O)>,
 }
@@ -392,12 +411,22 @@ struct LitRow<'f, 's, T: TestStrategy, Q, O, const L: usize, const P: usize, con
 /// No occluder cached.
 const NONE: Object = usize::MAX;
 
-impl<'f, 's, T: TestStrategy, Q: SqrtFn, O: Exit, const L: usize, const P: usize, const D: usize>
-    LitRow<'f, 's, T, Q, O, L, P, D>
+impl<
+        'f,
+        's,
+        T: TestStrategy,
+        Q: SqrtFn,
+        O: Exit,
+        const N: usize,
+        const L: usize,
+        const P: usize,
+        const D: usize,
+    > LitRow<'f, 's, T, Q, O, N, L, P, D>
 {
-    /// Row `j`: the planes' spans, widening the row's traced union `[lo_all, hi_all)`.
+    /// Row `j`: the planes' spans, widening the row's traced union `[lo_all, hi_all)`,
+    /// and the shadow spans.
     #[inline(never)]
-    fn new(f: &'f LitFrame<'s, T>, j: u32, lo_all: &mut u32, hi_all: &mut u32) -> Self {
+    fn new(f: &'f LitFrame<'s, T, N, L>, j: u32, lo_all: &mut u32, hi_all: &mut u32) -> Self {
         let mut spans = [(0, 0); P];
         for (span, plane) in spans.iter_mut().zip(f.planes) {
             if let Some((lo, hi)) = plane_span(f, plane, j) {
@@ -406,9 +435,20 @@ impl<'f, 's, T: TestStrategy, Q: SqrtFn, O: Exit, const L: usize, const P: usize
                 *hi_all = (*hi_all).max(hi);
             }
         }
+        let mut shadow = [[(0, 0); N]; L];
+        if spans.first().is_some_and(|&(_, len)| len > 0) {
+            for (row, sils) in shadow.iter_mut().zip(f.shadow).take(f.lights.len()) {
+                for (span, sil) in row.iter_mut().zip(sils).take(f.spheres.len()) {
+                    if let Some((lo, hi)) = sil.row_span(j, f.i0, f.i1) {
+                        *span = (lo, hi - lo);
+                    }
+                }
+            }
+        }
         Self {
             f,
             spans,
+            shadow,
             occluder: [NONE; L],
             marker: core::marker::PhantomData,
         }
@@ -480,9 +520,22 @@ impl<'f, 's, T: TestStrategy, Q: SqrtFn, O: Exit, const L: usize, const P: usize
 
     /// Whether the light's segment from `o` is blocked: the light's last occluder
     /// first, then every object until one blocks (any hit), or — the literal
-    /// baseline — every object, as a closest-hit search would.
-    fn occluded(&mut self, light: usize, o: Vec3, l: Vec3, dist: f32, from: Object, inside: bool) -> bool {
-        let count = self.f.spheres.len() + self.f.planes.len();
+    /// baseline — every object, as a closest-hit search would. `column`: the primary
+    /// ray's column when `o` is its hit on the first plane, whose shadow spans say
+    /// which spheres can block.
+    #[allow(clippy::too_many_arguments)]
+    fn occluded(
+        &mut self,
+        light: usize,
+        o: Vec3,
+        l: Vec3,
+        dist: f32,
+        from: Object,
+        inside: bool,
+        column: Option<u32>,
+    ) -> bool {
+        let n = self.f.spheres.len();
+        let count = n + self.f.planes.len();
         if !self.f.any_hit {
             let mut blocked = false;
             for k in 0..count {
@@ -490,12 +543,18 @@ impl<'f, 's, T: TestStrategy, Q: SqrtFn, O: Exit, const L: usize, const P: usize
             }
             return blocked;
         }
+        // A sphere outside its shadow span cannot block a primary hit on the floor.
+        let spans = self.shadow.get(light);
+        let candidate = |k: Object| match (column, spans.and_then(|s| s.get(k))) {
+            (Some(i), Some(&(lo, len))) if from == n && k < n => i.wrapping_sub(lo) < len,
+            _ => true,
+        };
         let cached = self.occluder.get(light).copied().unwrap_or(NONE);
-        if cached != NONE && self.blocks(cached, o, l, dist, from, inside) {
+        if cached != NONE && candidate(cached) && self.blocks(cached, o, l, dist, from, inside) {
             return true;
         }
         for k in 0..count {
-            if k != cached && self.blocks(k, o, l, dist, from, inside) {
+            if k != cached && candidate(k) && self.blocks(k, o, l, dist, from, inside) {
                 if let Some(c) = self.occluder.get_mut(light) {
                     *c = k;
                 }
@@ -543,7 +602,7 @@ impl<'f, 's, T: TestStrategy, Q: SqrtFn, O: Exit, const L: usize, const P: usize
     /// The local colour at `p` (not rounded): Lab #1 without lights, otherwise
     /// ambient + diffuse + specular with a shadow ray per light.
     #[inline(always)]
-    fn local(&mut self, k: Object, s: &Surface, p: Vec3, dir: Vec3) -> [f32; 3] {
+    fn local(&mut self, k: Object, s: &Surface, p: Vec3, dir: Vec3, column: Option<u32>) -> [f32; 3] {
         if L == 0 || self.f.lights.is_empty() {
             let kz = if s.lab_nz > 1.0 {
                 1.0
@@ -574,7 +633,7 @@ impl<'f, 's, T: TestStrategy, Q: SqrtFn, O: Exit, const L: usize, const P: usize
             if f.shadows {
                 let o = O::start(p, l, f.eps);
                 let dist = if O::TESTS_SELF { dist - f.eps } else { dist };
-                if self.occluded(index, o, l, dist, k, s.inside) {
+                if self.occluded(index, o, l, dist, k, s.inside, column) {
                     continue;
                 }
             }
@@ -605,7 +664,7 @@ impl<'f, 's, T: TestStrategy, Q: SqrtFn, O: Exit, const L: usize, const P: usize
     /// colour, mixed with what the reflected rays see while the surface is a mirror and
     /// the depth allows, rounded to 8 bits once.
     #[inline(always)]
-    fn color(&mut self, first: Option<(Object, f32)>, d: Vec3) -> Rgb888 {
+    fn color(&mut self, first: Option<(Object, f32)>, d: Vec3, i: u32) -> Rgb888 {
         let f = self.f;
         let mut acc = [0.0f32; 3];
         let mut weight = 1.0f32;
@@ -618,7 +677,9 @@ impl<'f, 's, T: TestStrategy, Q: SqrtFn, O: Exit, const L: usize, const P: usize
             };
             let p = origin + dir * t;
             let s = self.surface(k, p, dir);
-            let local = self.local(k, &s, p, dir);
+            // The shadow spans hold for the primary ray only.
+            let column = (depth == 0).then_some(i);
+            let local = self.local(k, &s, p, dir, column);
             let r = if D == 0 { 0.0 } else { s.material.reflect };
             if !(r > 0.0) {
                 add(&mut acc, weight, local);
@@ -649,8 +710,16 @@ impl<'f, 's, T: TestStrategy, Q: SqrtFn, O: Exit, const L: usize, const P: usize
     }
 }
 
-impl<'s, T: TestStrategy, Q: SqrtFn, O: Exit, const L: usize, const P: usize, const D: usize>
-    RowTracer<'s, T, LitSphere> for LitRow<'_, 's, T, Q, O, L, P, D>
+impl<
+        's,
+        T: TestStrategy,
+        Q: SqrtFn,
+        O: Exit,
+        const N: usize,
+        const L: usize,
+        const P: usize,
+        const D: usize,
+    > RowTracer<'s, T, LitSphere> for LitRow<'_, 's, T, Q, O, N, L, P, D>
 {
     #[inline(always)]
     fn background(&self) -> Rgb888 {
@@ -677,7 +746,7 @@ impl<'s, T: TestStrategy, Q: SqrtFn, O: Exit, const L: usize, const P: usize, co
                 }
             }
         }
-        (best, self.color(best, d))
+        (best, self.color(best, d, i))
     }
 }
 
@@ -687,7 +756,11 @@ impl<'s, T: TestStrategy, Q: SqrtFn, O: Exit, const L: usize, const P: usize, co
 /// within `dn_margin` of the ideal one (the stepping's bound `E` on `|d − ideal|` with
 /// `|n| = 1`, plus the dot product's rounding), so columns with `σ(A + iB) > −margin`
 /// are kept; computed in `f64`, once per row and plane.
-fn plane_span<T: TestStrategy>(f: &LitFrame<'_, T>, plane: &FramePlane, j: u32) -> Option<(u32, u32)> {
+fn plane_span<T: TestStrategy, const N: usize, const L: usize>(
+    f: &LitFrame<'_, T, N, L>,
+    plane: &FramePlane,
+    j: u32,
+) -> Option<(u32, u32)> {
     let (i0, i1) = (f.i0, f.i1);
     if !(plane.s != 0.0) {
         return None; // the eye is on the plane (or NaN): no ray hits it at t > 0
@@ -719,6 +792,80 @@ fn plane_span<T: TestStrategy>(f: &LitFrame<'_, T>, plane: &FramePlane, j: u32) 
     let lo = if lo > f64::from(i0) { lo as u32 } else { i0 };
     let hi = if hi < f64::from(i1) { hi as u32 } else { i1 };
     (lo < hi).then_some((lo, hi))
+}
+
+/// Where on the image the shadow that sphere `g` casts on `floor` under `light` can be
+/// seen: the silhouette of a ball that contains the shadow, so a primary ray that hits
+/// the floor outside it cannot be in that sphere's shadow. `All` (no culling) where the
+/// shadow is not bounded.
+///
+/// - Directional light (unit `l` toward it): the shadow is the cut of the cylinder of
+///   radius `r` along `l` through the centre `C` with the plane — an ellipse centred
+///   where the axis meets the plane, `C − l·h_C/(l·n)` (`h_C` the centre's height),
+///   with semi-major axis `r/|l·n|`.
+/// - Point light at height `h_P` above the plane (the side it is on): the shadow lies
+///   in the cut of the cone from the light that contains the sphere (half-angle
+///   `α = asin(r/|C − P|)`, axis at angle `γ` from the plane's downward normal),
+///   bounded when `γ + α < 90°`: every cut point is within `h_P·tan(γ + α)` of the
+///   light's foot on the plane, and the axis meets the plane `h_P·tan γ` from the foot,
+///   so a ball there of radius `h_P·(tan(γ + α) + tan γ)` holds the shadow.
+///
+/// The ball is enlarged by `2⁻⁸` of the lengths involved (far beyond the `f32`
+/// rounding of the hit point and of the shadow test, ≈ 2⁻²² of them), and the
+/// silhouette by the quadratic tests' margin and the stepping's error bound, as a
+/// sphere's is: culling changes no pixel (`tests/lit.rs` compares with the unculled
+/// loop).
+fn shadow_silhouette(
+    light: &FrameLight,
+    g: &SphereGeom,
+    floor: &FramePlane,
+    camera: &Camera,
+    step_err: f32,
+) -> Silhouette {
+    let v64 = |v: Vec3| [f64::from(v.x), f64::from(v.y), f64::from(v.z)];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let along = |a: [f64; 3], b: [f64; 3], k: f64| [a[0] + b[0] * k, a[1] + b[1] * k, a[2] + b[2] * k];
+    let (c, q, mut n) = (v64(g.l), v64(floor.q), v64(floor.n));
+    let r = libm::sqrt(f64::from(g.r2));
+    let h_c = dot(along(c, q, -1.0), n);
+    let (centre, radius) = match *light {
+        FrameLight::Directional { l, .. } => {
+            let l = v64(l);
+            let ln = dot(l, n);
+            (along(c, l, -h_c / ln), r / ln.abs())
+        }
+        FrameLight::Point { p, .. } => {
+            let p = v64(p);
+            let mut h_p = dot(along(p, q, -1.0), n);
+            if h_p < 0.0 {
+                // Measure heights on the light's side.
+                n = [-n[0], -n[1], -n[2]];
+                h_p = -h_p;
+            }
+            let to_c = along(c, p, -1.0);
+            let dist = libm::sqrt(dot(to_c, to_c));
+            if !(dist > r && h_p > 0.0) {
+                return Silhouette::All;
+            }
+            let axis = [to_c[0] / dist, to_c[1] / dist, to_c[2] / dist];
+            let alpha = libm::asin(r / dist);
+            let gamma = libm::acos((-dot(axis, n)).clamp(-1.0, 1.0));
+            if !(gamma + alpha < core::f64::consts::FRAC_PI_2 - 1e-6) {
+                return Silhouette::All;
+            }
+            // Every cut point is within h_P·tan(γ + α) of the light's foot on the plane,
+            // and the axis meets the plane h_P·tan γ from it.
+            let reach = libm::tan(gamma + alpha) + libm::tan(gamma);
+            (along(p, axis, h_p / libm::cos(gamma)), h_p * reach)
+        }
+    };
+    let size = libm::sqrt(dot(centre, centre)) + libm::sqrt(dot(c, c)) + r;
+    let radius = radius + (radius + size) * (1.0 / 256.0);
+    if !(radius.is_finite() && size.is_finite()) {
+        return Silhouette::All;
+    }
+    let centre = Vec3::new(centre[0] as f32, centre[1] as f32, centre[2] as f32);
+    Silhouette::new(centre, radius as f32, camera, Margin::Quadratic, step_err)
 }
 
 /// `acc += weight·c`, per channel.

@@ -383,3 +383,107 @@ fn scene_errors() {
         Err(SceneError::Settings(SettingsError::Ambient))
     ));
 }
+
+/// Culling (sphere spans, plane spans, shadow spans) and the any-hit shortcut change no
+/// pixel on random scenes: spheres above, on, in and under a random floor, point lights
+/// high and low (inside spheres too), directional lights down to grazing, cameras
+/// anywhere. The robust test, bit for bit against the literal loop.
+#[test]
+fn culling_changes_no_pixel_on_random_lit_scenes() {
+    let mut rng = common::Rng(0x5eed_1175);
+    let mut shadowed = 0;
+    for case in 0..120 {
+        let mut s: Scene<6, 2, 2, 2> = Scene::new(Rgb888::new(10, 20, 30));
+        let n = Vec3::new(rng.range(-0.3, 0.3), 1.0, rng.range(-0.3, 0.3));
+        let floor_y = rng.range(-2.0, 0.0);
+        s.push_plane(
+            Plane::new(Vec3::new(0.0, floor_y, 0.0), n, Rgb888::new(200, 200, 200))
+                .with_checker(Rgb888::new(50, 50, 50), rng.range(0.3, 2.0)),
+        )
+        .unwrap();
+        if rng.next() < 0.3 {
+            s.push_plane(Plane::new(
+                Vec3::new(0.0, 0.0, -8.0),
+                Vec3::new(0.0, 0.2, 1.0),
+                Rgb888::new(90, 200, 90),
+            ))
+            .unwrap();
+        }
+        for _ in 0..1 + (rng.next() * 5.0) as usize {
+            let r = rng.range(0.2, 1.5);
+            let centre = Vec3::new(
+                rng.range(-3.0, 3.0),
+                floor_y + rng.range(-r, 3.0),
+                rng.range(-4.0, 2.0),
+            );
+            let reflect = if rng.next() < 0.3 { 0.5 } else { 0.0 };
+            s.push(
+                Sphere::new(centre, r, Rgb888::new(250, 120, 60))
+                    .with_material(Material::new(0.4, 20.0, reflect)),
+            )
+            .unwrap();
+        }
+        for _ in 0..1 + (rng.next() * 2.0) as usize {
+            let light = if rng.next() < 0.5 {
+                Light::directional(
+                    Vec3::new(rng.range(-1.0, 1.0), -rng.range(0.02, 2.0), rng.range(-1.0, 1.0)),
+                    0.7,
+                )
+            } else {
+                Light::point(
+                    Vec3::new(
+                        rng.range(-4.0, 4.0),
+                        floor_y + rng.range(0.1, 6.0),
+                        rng.range(-4.0, 4.0),
+                    ),
+                    0.6,
+                )
+            };
+            s.push_light(light).unwrap();
+        }
+        let eye = Vec3::new(
+            rng.range(-6.0, 6.0),
+            floor_y + rng.range(0.2, 5.0),
+            rng.range(4.0, 9.0),
+        );
+        let Ok(camera) = Camera::new(
+            eye,
+            Vec3::new(0.0, floor_y, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            rng.range(0.3, 1.6),
+            Size::new(40, 30),
+        ) else {
+            continue;
+        };
+        let method = Method::new(
+            embedded_raytracer::Stepping::Direct,
+            SphereTest::Robust,
+            embedded_raytracer::Sqrt::Exact,
+        );
+        let render = Render::new(&s, &camera).with_method(method);
+        let culled = common::trace(render);
+        let literal = common::trace(
+            render.with_options(
+                Options::DEFAULT
+                    .with_span_culling(false)
+                    .with_shadow_any_hit(false),
+            ),
+        );
+        for (k, (a, b)) in culled.iter().zip(&literal).enumerate() {
+            assert_eq!(
+                a,
+                b,
+                "case {case}, pixel {k}: spheres {:?} lights {:?} planes {:?} camera {:?}",
+                s.spheres(),
+                s.lights(),
+                s.planes(),
+                camera.params()
+            );
+        }
+        shadowed += culled
+            .iter()
+            .filter(|p| p.0.is_some_and(|h| h.0 == s.spheres().len()) && p.1.r() < 60)
+            .count();
+    }
+    assert!(shadowed > 1000, "the cases have shadows on the floor: {shadowed}");
+}

@@ -76,8 +76,9 @@ summary line then goes to stderr); a block device, socket or directory is refuse
 Nothing is written when the scene does not load.
 
 Limits: the scene file is at most 1 MiB, at most 256 spheres, 8 lights and 8 planes,
-max_depth at most 8, width and height at most 8192. Worst case measured (docs/cli_worst_case.toml: 8192x8192, 256 spheres all
-enclosing the eye, so none is culled; release build on a shared 2-core AMD EPYC VM):
+max_depth at most 8, width and height at most 8192. Worst case measured
+(docs/cli_worst_case.toml: 8192x8192, 256 spheres all enclosing the eye, so none is
+culled; release build on a shared 2-core AMD EPYC VM):
 158.6 s of CPU time (10.5 min wall under a load average of 8 to 10), peak memory 3,324 KB.
 The image is streamed row by row: memory grows with the width, not with the height.
 Exit codes: 0 done, 2 bad input or a failed write (one message on stderr).";

@@ -537,6 +537,8 @@ pub fn parse<const N: usize, const L: usize, const P: usize, const D: usize>(
         scene.set_settings(settings).map_err(|e| {
             let key = match e {
                 SceneError::Settings(s) => s.file_key(),
+                // `set_settings` refuses nothing but settings; the depth is what the
+                // scene type limits.
                 _ => "max_depth",
             };
             SceneFileError::field(key, e)
@@ -1062,9 +1064,15 @@ reflect = 0.1
         let f = full(&format!("ambient = 0\nmax_depth = 8\n{GOOD}")).unwrap();
         assert_eq!((f.scene.settings().ambient, f.scene.max_depth()), (0.0, 8));
 
-        // Without settings, a type with a shallower depth keeps its own default.
+        // Without settings, a type with a shallower depth keeps its own default, also
+        // when another setting is given.
         let f = parse::<4, 1, 1, 1>(GOOD).unwrap();
         assert_eq!(f.scene.settings().max_depth, 1);
+        let f = parse::<4, 0, 0, 0>(&format!("ambient = 0.3\n{GOOD}")).unwrap();
+        assert_eq!(
+            (f.scene.settings().ambient, f.scene.settings().max_depth),
+            (0.3, 0)
+        );
     }
 
     /// A file without the new keys is the same scene and the same errors whatever the

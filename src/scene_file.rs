@@ -113,10 +113,9 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> SceneFile<N
     /// the spheres-only type `Scene<N>` cannot draw.
     #[must_use]
     pub fn has_features(&self) -> bool {
-        let mirror = |m: &Material| m.reflect > 0.0;
         !self.scene.lights().is_empty()
             || !self.scene.planes().is_empty()
-            || self.scene.spheres().iter().any(|s| mirror(&s.material))
+            || self.scene.spheres().iter().any(|s| s.material.reflect > 0.0)
     }
 
     /// The same file as the spheres-only type `SceneFile<N>` when it has no light,

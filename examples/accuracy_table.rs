@@ -44,7 +44,7 @@ fn scenes_table(out: &mut String) -> Result<(), scene_file::SceneFileError> {
     out.push_str("| scene | method | coverage errors | fraction | shade max | shade mean | drift (px) | undecidable |\n");
     out.push_str("|---|---|---:|---:|---:|---:|---:|---:|\n");
     for name in SCENES {
-        let f = scene_file::load::<MAX_SPHERES>(standard::path(name))?;
+        let f = scene_file::load::<MAX_SPHERES, 0, 0, 0>(standard::path(name))?;
         let truth = reference::render(&f.scene, &f.camera);
         for method in Method::ALL {
             let render = Render::<MAX_SPHERES, Rgb888>::new(&f.scene, &f.camera).with_method(method);

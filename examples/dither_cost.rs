@@ -30,7 +30,7 @@ fn main() -> Result<(), String> {
     let path = std::env::args()
         .nth(1)
         .unwrap_or_else(|| "scenes/lab.toml".into());
-    let file = scene_file::load::<MAX_SPHERES>(&path).map_err(|e| e.to_string())?;
+    let file = scene_file::load::<MAX_SPHERES, 0, 0, 0>(&path).map_err(|e| e.to_string())?;
     let size = Size::new(128, 64);
     let camera = Camera::from_params(CameraParams {
         size,

@@ -5,6 +5,10 @@
 //!     [--stepping …] [--sphere-test …] [--sqrt …] [--force]   # --help lists the choices
 //! ```
 //!
+//! A scene file without lights, planes or mirrors is drawn through the spheres-only type
+//! `Scene<N>`, the Lab #1 loop (its PNG is the one it always was); one with them through
+//! the full type `Scene<N, L, P, D>` with the host's capacities.
+//!
 //! Prints the resolution, the method, the render and PNG times and the peak memory.
 //! Any bad input (file, field or flag) is one message on stderr and exit code 2. The
 //! rules for the output (`--help` and the README say the same):
@@ -37,7 +41,7 @@ use embedded_raytracer::{scene_file, Method, Render};
 
 #[path = "common/standard.rs"]
 mod standard;
-use standard::MAX_SPHERES;
+use standard::FullSceneFile;
 
 /// The usage line; the method flags list every choice from the method's own tables.
 fn usage() -> String {
@@ -51,7 +55,9 @@ fn usage() -> String {
 /// The rest of `--help` after the usage line. The worst case was measured with
 /// `/usr/bin/time -v target/release/examples/render docs/cli_worst_case.toml --output worst.png`.
 const HELP: &str = "
-Renders a TOML scene file (see scenes/*.toml) to an 8-bit RGB PNG.
+Renders a TOML scene file (see scenes/*.toml) to an 8-bit RGB PNG. Spheres alone
+(scenes/lab.toml) are drawn under the Lab #1 headlight; lights, a checkered floor and
+mirrors (scenes/shadows.toml, scenes/mirrors.toml) are drawn when the file has them.
 
   --output, -o OUT   the PNG (default: the scene's name with .png, in the current directory)
   --force            replace a read-only output
@@ -69,9 +75,10 @@ or character device (/dev/null, /dev/stdout) is written through, never replaced 
 summary line then goes to stderr); a block device, socket or directory is refused.
 Nothing is written when the scene does not load.
 
-Limits: the scene file is at most 1 MiB, at most 256 spheres, width and height at most
-8192. Worst case measured (docs/cli_worst_case.toml: 8192x8192, 256 spheres all
-enclosing the eye, so none is culled; release build on a shared 2-core AMD EPYC VM):
+Limits: the scene file is at most 1 MiB, at most 256 spheres, 8 lights and 8 planes,
+max_depth at most 8, width and height at most 8192. Worst case measured
+(docs/cli_worst_case.toml: 8192x8192, 256 spheres all enclosing the eye, so none is
+culled; release build on a shared 2-core AMD EPYC VM):
 158.6 s of CPU time (10.5 min wall under a load average of 8 to 10), peak memory 3,324 KB.
 The image is streamed row by row: memory grows with the width, not with the height.
 Exit codes: 0 done, 2 bad input or a failed write (one message on stderr).";
@@ -218,32 +225,22 @@ fn run() -> Result<(), String> {
             return Ok(());
         }
     };
-    let file = scene_file::load::<MAX_SPHERES>(&args.scene).map_err(|e| e.to_string())?;
+    let file: Box<FullSceneFile> = Box::new(scene_file::load(&args.scene).map_err(|e| e.to_string())?);
     let size = file.camera.size();
     let destination = destination(&args.output, &args.scene, args.force)?;
-    let render = Render::new(&file.scene, &file.camera).with_method(args.method);
 
-    let fail = |e: io::Error| format!("{}: cannot write the PNG: {e}", args.output.display());
     // A stream may be this process's own standard output (`--output /dev/stdout`): the
     // summary then goes to standard error, after the PNG.
     let summary_to_stderr = matches!(destination, Destination::Stream { .. });
-    let (rendering, encoding) = match destination {
-        Destination::File { path, existing } => {
-            let temp = temporary_beside(&path, existing.as_ref()).map_err(fail)?;
-            let times = write_png(&render, size, temp.as_file()).map_err(fail)?;
-            temp.as_file().sync_all().map_err(fail)?;
-            // Rename over the file that was there; a new name must still be free, so a
-            // file or link placed there since the checks above is not replaced either.
-            let persisted = match existing {
-                Some(_) => temp.persist(&path),
-                None => temp.persist_noclobber(&path),
-            };
-            persisted.map_err(|e| fail(e.error))?;
-            times
+    let (rendering, encoding) = match file.spheres_only() {
+        // No light, plane or mirror: the spheres-only type, whose loop is Lab #1's.
+        Some(spheres) => {
+            let render = Render::new(&spheres.scene, &spheres.camera).with_method(args.method);
+            output(&render, size, destination, &args.output)?
         }
-        Destination::Stream { path } => {
-            let stream = OpenOptions::new().write(true).open(&path).map_err(fail)?;
-            write_png(&render, size, &stream).map_err(fail)?
+        None => {
+            let render = Render::new(&file.scene, &file.camera).with_method(args.method);
+            output(&render, size, destination, &args.output)?
         }
     };
 
@@ -252,10 +249,11 @@ fn run() -> Result<(), String> {
         format!(", peak memory {:.1} MB", kib as f64 * 1024.0 / 1e6)
     });
     let summary = format!(
-        "{}: {}x{} pixels, method {}, {:.3} ms ({:.1} ns/pixel), PNG {:.3} ms{memory} -> {}",
+        "{}: {}x{} pixels{}, method {}, {:.3} ms ({:.1} ns/pixel), PNG {:.3} ms{memory} -> {}",
         args.scene.display(),
         size.width,
         size.height,
+        features(&file),
         args.method,
         rendering.as_secs_f64() * 1e3,
         rendering.as_secs_f64() * 1e9 / pixels as f64,
@@ -269,6 +267,52 @@ fn run() -> Result<(), String> {
         writeln!(io::stdout(), "{summary}")
     };
     Ok(())
+}
+
+/// Writes the PNG of `render` to `destination` (the output rules of the module docs);
+/// returns the time spent tracing and the time spent encoding and writing.
+fn output<const N: usize, const L: usize, const P: usize, const D: usize>(
+    render: &Render<'_, N, Rgb888, L, P, D>,
+    size: Size,
+    destination: Destination,
+    name: &Path,
+) -> Result<(Duration, Duration), String> {
+    let fail = |e: io::Error| format!("{}: cannot write the PNG: {e}", name.display());
+    match destination {
+        Destination::File { path, existing } => {
+            let temp = temporary_beside(&path, existing.as_ref()).map_err(fail)?;
+            let times = write_png(render, size, temp.as_file()).map_err(fail)?;
+            temp.as_file().sync_all().map_err(fail)?;
+            // Rename over the file that was there; a new name must still be free, so a
+            // file or link placed there since the checks above is not replaced either.
+            let persisted = match existing {
+                Some(_) => temp.persist(&path),
+                None => temp.persist_noclobber(&path),
+            };
+            persisted.map_err(|e| fail(e.error))?;
+            Ok(times)
+        }
+        Destination::Stream { path } => {
+            let stream = OpenOptions::new().write(true).open(&path).map_err(fail)?;
+            write_png(render, size, &stream).map_err(fail)
+        }
+    }
+}
+
+/// The summary's note of what a scene has beyond spheres (` (2 lights, 1 plane,
+/// max_depth 3)`); empty for one drawn through the spheres-only type.
+fn features(file: &FullSceneFile) -> String {
+    if !file.has_features() {
+        return String::new();
+    }
+    let count = |n: usize, noun: &str| format!("{n} {noun}{}", if n == 1 { "" } else { "s" });
+    let scene = &file.scene;
+    format!(
+        " ({}, {}, max_depth {})",
+        count(scene.lights().len(), "light"),
+        count(scene.planes().len(), "plane"),
+        scene.max_depth()
+    )
 }
 
 /// Where the PNG goes, decided before anything is written.
@@ -391,7 +435,11 @@ fn temporary_beside(path: &Path, existing: Option<&fs::Metadata>) -> io::Result<
 
 /// Renders straight into a PNG stream on `out`, one row buffered at a time; returns the
 /// time spent tracing and the time spent encoding and writing.
-fn write_png(render: &Render<'_, MAX_SPHERES>, size: Size, out: &File) -> io::Result<(Duration, Duration)> {
+fn write_png<const N: usize, const L: usize, const P: usize, const D: usize>(
+    render: &Render<'_, N, Rgb888, L, P, D>,
+    size: Size,
+    out: &File,
+) -> io::Result<(Duration, Duration)> {
     let start = Instant::now();
     let mut out = BufWriter::new(out);
     let mut encoder = png::Encoder::new(&mut out, size.width, size.height);

@@ -443,7 +443,7 @@ struct App {
 
 impl App {
     fn new(args: &Args) -> Result<Self, String> {
-        let file = scene_file::load::<MAX_SPHERES>(&args.scene).map_err(|e| e.to_string())?;
+        let file = scene_file::load::<MAX_SPHERES, 0, 0, 0>(&args.scene).map_err(|e| e.to_string())?;
         let base = *file.camera.params();
         let size = args.size.unwrap_or(base.size);
         let camera = Camera::from_params(CameraParams { size, ..base }).map_err(|e| {
@@ -508,7 +508,7 @@ impl App {
             return;
         }
         self.mtime = now;
-        match scene_file::load::<MAX_SPHERES>(&self.path) {
+        match scene_file::load::<MAX_SPHERES, 0, 0, 0>(&self.path) {
             Ok(file) => {
                 *self.scene = file.scene;
                 self.base = *file.camera.params();

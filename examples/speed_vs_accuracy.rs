@@ -594,7 +594,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     // Errors first (one trace per method and scene), then the timing rounds.
     let files = SCENES
         .iter()
-        .map(|scene| scene_file::load::<MAX_SPHERES>(standard::path(scene)))
+        .map(|scene| scene_file::load::<MAX_SPHERES, 0, 0, 0>(standard::path(scene)))
         .collect::<Result<Vec<_>, _>>()?;
     let mut points: Vec<Point3> = Vec::new();
     let mut cases = Vec::new();
@@ -636,7 +636,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     }
 
     // Growth curve: the first n spheres of crowd.
-    let crowd = scene_file::load::<MAX_SPHERES>(standard::path("crowd"))?;
+    let crowd = scene_file::load::<MAX_SPHERES, 0, 0, 0>(standard::path("crowd"))?;
     let counts: &[usize] = if args.quick {
         &[1, 64]
     } else {
@@ -664,7 +664,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     // forward differences against the robust test on lab and crowd.
     let mut isolated = Vec::new();
     for scene in ["lab", "crowd"] {
-        let file = scene_file::load::<MAX_SPHERES>(standard::path(scene))?;
+        let file = scene_file::load::<MAX_SPHERES, 0, 0, 0>(standard::path(scene))?;
         for stepping in [Stepping::Direct, Stepping::Incremental] {
             let robust = Method::new(stepping, SphereTest::Robust, Sqrt::Exact);
             let fd = Method::new(stepping, SphereTest::ForwardDiff, Sqrt::Exact);

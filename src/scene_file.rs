@@ -18,23 +18,59 @@
 //! color = [255, 64, 64]         # 8-bit sRGB
 //! ```
 //!
-//! Every fixed-length array must have exactly its length, every number must fit its
-//! type (an `f32` field refuses `1e39` rather than reading it as infinity), at most `N`
-//! spheres are read (counted while parsing, so a huge file is refused at sphere
-//! `N + 1`), and [`load`] reads only a regular file of at most [`MAX_FILE_SIZE`] bytes.
+//! Lights, planes and mirrors are optional keys; a file without them is spheres under
+//! the Lab #1 headlight, whatever the scene type it is loaded into:
 //!
-//! Every error names the field (`camera.fov_y_deg`, `sphere[2].radius`, with
-//! `sphere[k]` counting from 0 in file order), the line where the parser knows it,
-//! and the reason:
+//! ```toml
+//! ambient = 0.1                 # optional, 0 … 1
+//! max_depth = 2                 # optional, 0 … 8 (and at most the scene type's D)
+//! shadows = true                # optional
+//!
+//! [[light]]
+//! type = "directional"          # or "point"
+//! direction = [-1.0, -2.0, -1.0]  # directional only: the way the light travels
+//! # position = [2.0, 5.0, 3.0]   # point only
+//! intensity = 0.8               # optional, default 1, ≥ 0
+//!
+//! [[sphere]]                    # as above, plus optionally:
+//! specular = 0.5                # 0 … 1, default 0
+//! shininess = 32                # ≥ 1, default 32
+//! reflect = 0.3                 # 0 … 1, default 0 (needs D ≥ 1)
+//!
+//! [[plane]]
+//! point = [0.0, -1.0, 0.0]
+//! normal = [0.0, 1.0, 0.0]      # not zero
+//! color = [220, 220, 220]
+//! checker = [40, 40, 40]        # optional second colour
+//! checker_size = 1.0            # optional, default 1, > 0 (only with `checker`)
+//! # specular, shininess and reflect as for spheres
+//! ```
+//!
+//! The scene type's capacities are the loader's limits: [`parse`]`::<N, L, P, D>` reads
+//! at most `N` spheres, `L` lights and `P` planes (each counted while parsing, so a huge
+//! file is refused at entry `N + 1`) and accepts `reflect > 0` only if `D ≥ 1`.
+//!
+//! Every fixed-length array must have exactly its length, every number must fit its
+//! type (an `f32` field refuses `1e39` rather than reading it as infinity), and [`load`]
+//! reads only a regular file of at most [`MAX_FILE_SIZE`] bytes.
+//!
+//! Every error names the field (`camera.fov_y_deg`, `sphere[2].radius`,
+//! `light[1].direction`, `plane[0].normal`, with `sphere[k]` counting from 0 in file
+//! order), the line where the parser knows it, and the reason:
 //!
 //! ```
 //! use embedded_raytracer::scene_file::parse;
 //!
 //! let text = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov_y_deg = 60\nwidth = 4\nheight = 3\n\
 //!             [[sphere]]\ncenter = [0, 0, 0]\nradius = 0\ncolor = [255, 0, 0]\n";
-//! let err = parse::<4>(text).unwrap_err();
+//! let err = parse::<4, 0, 0, 0>(text).unwrap_err();
 //! assert_eq!(err.field.as_deref(), Some("sphere[0].radius"));
 //! assert_eq!(err.to_string(), "sphere[0].radius: radius must be greater than 0");
+//!
+//! let lit = "[camera]\neye = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov_y_deg = 60\nwidth = 4\nheight = 3\n\
+//!            [[light]]\ntype = \"point\"\ndirection = [0, -1, 0]\n";
+//! let err = parse::<4, 2, 1, 2>(lit).unwrap_err();
+//! assert_eq!(err.to_string(), "light[0].direction: a point light has no direction (give `position`)");
 //! ```
 
 use std::fmt;
@@ -50,8 +86,11 @@ use serde::de::{self, Deserializer, IgnoredAny, MapAccess, SeqAccess, Unexpected
 use serde::Deserialize;
 
 use crate::camera::{Camera, CameraParams};
-use crate::error::CameraError;
-use crate::scene::Scene;
+use crate::error::{CameraError, LightError, PlaneError, SceneError, SphereError};
+use crate::light::Light;
+use crate::material::Material;
+use crate::plane::Plane;
+use crate::scene::{Scene, Settings};
 use crate::sphere::Sphere;
 use crate::vec3::Vec3;
 
@@ -59,13 +98,46 @@ use crate::vec3::Vec3;
 /// spheres, is 5,351 bytes).
 pub const MAX_FILE_SIZE: u64 = 1 << 20;
 
-/// A loaded scene file: the scene and its camera.
+/// A loaded scene file: the scene (with capacities `N` spheres, `L` lights, `P`
+/// planes, reflection depth `D`) and its camera.
 #[derive(Clone, Debug)]
-pub struct SceneFile<const N: usize> {
-    /// The spheres and background.
-    pub scene: Scene<N>,
+pub struct SceneFile<const N: usize, const L: usize = 0, const P: usize = 0, const D: usize = 0> {
+    /// The objects, lights, background and settings.
+    pub scene: Scene<N, L, P, D>,
     /// The validated camera.
     pub camera: Camera,
+}
+
+impl<const N: usize, const L: usize, const P: usize, const D: usize> SceneFile<N, L, P, D> {
+    /// Whether the scene has a light, a plane or a mirror (`reflect > 0`): anything
+    /// the spheres-only type `Scene<N>` cannot draw.
+    #[must_use]
+    pub fn has_features(&self) -> bool {
+        !self.scene.lights().is_empty()
+            || !self.scene.planes().is_empty()
+            || self.scene.spheres().iter().any(|s| s.material.reflect > 0.0)
+    }
+
+    /// The same file as the spheres-only type `SceneFile<N>` when it has no light,
+    /// plane or mirror ([`has_features`](Self::has_features) is false): rendered
+    /// through `Scene<N>`, it draws with the Lab #1 loop, the pixels of a file without
+    /// the new keys. Without lights the settings and the spheres' highlights change no
+    /// pixel, so nothing the picture depends on is dropped. `None` when it has features.
+    #[must_use]
+    pub fn spheres_only(&self) -> Option<SceneFile<N>> {
+        if self.has_features() {
+            return None;
+        }
+        let mut scene = Scene::new(self.scene.background());
+        for sphere in self.scene.spheres() {
+            // Cannot fail: the same capacity, spheres already checked, no mirror.
+            scene.push(*sphere).ok()?;
+        }
+        Some(SceneFile {
+            scene,
+            camera: self.camera,
+        })
+    }
 }
 
 /// Why a scene file was rejected: the file, the field, the line and the reason.
@@ -111,11 +183,18 @@ impl SceneFileError {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawScene<const N: usize> {
+struct RawScene<const N: usize, const L: usize, const P: usize> {
     background: Option<Exact<Int<u8>, 3>>,
+    ambient: Option<F32>,
+    max_depth: Option<Depth>,
+    shadows: Option<bool>,
     camera: RawCamera,
-    #[serde(default, deserialize_with = "spheres::<_, N>")]
+    #[serde(default, deserialize_with = "capped::<_, RawSphere, N>")]
     sphere: Vec<RawSphere>,
+    #[serde(default, deserialize_with = "capped::<_, RawLight, L>")]
+    light: Vec<RawLight>,
+    #[serde(default, deserialize_with = "capped::<_, RawPlane, P>")]
+    plane: Vec<RawPlane>,
 }
 
 #[derive(Deserialize)]
@@ -136,6 +215,70 @@ struct RawSphere {
     center: Exact<F32, 3>,
     radius: F32,
     color: Exact<Int<u8>, 3>,
+    specular: Option<F32>,
+    shininess: Option<F32>,
+    reflect: Option<F32>,
+}
+
+/// A sphere's or plane's material from its optional keys, each missing one at its
+/// default (unchecked). The keys are written out in both structs rather than
+/// flattened: serde's `flatten` drops `deny_unknown_fields` and the error's line.
+fn material(specular: &Option<F32>, shininess: &Option<F32>, reflect: &Option<F32>) -> Material {
+    let or = |v: &Option<F32>, default: f32| v.as_ref().map_or(default, |v| v.0);
+    let d = Material::DEFAULT;
+    Material::new(
+        or(specular, d.specular),
+        or(shininess, d.shininess),
+        or(reflect, d.reflect),
+    )
+}
+
+/// A light's `type`.
+#[derive(Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum LightKind {
+    Directional,
+    Point,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLight {
+    #[serde(rename = "type")]
+    kind: LightKind,
+    direction: Option<Exact<F32, 3>>,
+    position: Option<Exact<F32, 3>>,
+    intensity: Option<F32>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPlane {
+    point: Exact<F32, 3>,
+    normal: Exact<F32, 3>,
+    color: Exact<Int<u8>, 3>,
+    checker: Option<Exact<Int<u8>, 3>>,
+    checker_size: Option<F32>,
+    specular: Option<F32>,
+    shininess: Option<F32>,
+    reflect: Option<F32>,
+}
+
+/// The noun an array of tables is counted in, for the too-many message.
+trait Noun {
+    const NOUN: &'static str;
+}
+
+impl Noun for RawSphere {
+    const NOUN: &'static str = "sphere";
+}
+
+impl Noun for RawLight {
+    const NOUN: &'static str = "light";
+}
+
+impl Noun for RawPlane {
+    const NOUN: &'static str = "plane";
 }
 
 fn vec3(v: &Exact<F32, 3>) -> Vec3 {
@@ -168,34 +311,37 @@ fn count_of(count: usize, noun: &str) -> String {
     }
 }
 
-/// The `[[sphere]]` array, refused as soon as it has more than `N` entries: sphere
-/// `N + 1` is skipped unread, nothing after it is looked at.
-fn spheres<'de, D: Deserializer<'de>, const N: usize>(d: D) -> Result<Vec<RawSphere>, D::Error> {
-    struct Spheres<const N: usize>;
-    impl<'de, const N: usize> Visitor<'de> for Spheres<N> {
-        type Value = Vec<RawSphere>;
+/// An array of tables (`[[sphere]]`, `[[light]]`, `[[plane]]`), refused as soon as it
+/// has more than `N` entries: entry `N + 1` is skipped unread, nothing after it is
+/// looked at.
+fn capped<'de, D: Deserializer<'de>, T: Deserialize<'de> + Noun, const N: usize>(
+    d: D,
+) -> Result<Vec<T>, D::Error> {
+    struct Capped<T, const N: usize>(PhantomData<T>);
+    impl<'de, T: Deserialize<'de> + Noun, const N: usize> Visitor<'de> for Capped<T, N> {
+        type Value = Vec<T>;
         fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-            f.write_str("an array of [[sphere]] tables")
+            write!(f, "an array of [[{}]] tables", T::NOUN)
         }
         fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
-            let mut spheres = Vec::new();
-            while spheres.len() < N {
+            let mut entries = Vec::new();
+            while entries.len() < N {
                 match seq.next_element()? {
-                    Some(sphere) => spheres.push(sphere),
-                    None => return Ok(spheres),
+                    Some(entry) => entries.push(entry),
+                    None => return Ok(entries),
                 }
             }
             if seq.next_element::<IgnoredAny>()?.is_some() {
                 let verb = if N == 1 { "is" } else { "are" };
                 return Err(de::Error::custom(format_args!(
                     "more than {}: at most {N} {verb} supported",
-                    count_of(N, "sphere")
+                    count_of(N, T::NOUN)
                 )));
             }
-            Ok(spheres)
+            Ok(entries)
         }
     }
-    d.deserialize_seq(Spheres::<N>)
+    d.deserialize_seq(Capped::<T, N>(PhantomData))
 }
 
 /// A TOML date-time where `what` was expected: toml hands it to a visitor as a map,
@@ -332,9 +478,41 @@ impl Bounded for u32 {
     const MAX: u64 = u32::MAX as u64;
 }
 
-/// Parses a scene file's text into a scene of capacity `N` and its camera.
-pub fn parse<const N: usize>(text: &str) -> Result<SceneFile<N>, SceneFileError> {
-    let raw: RawScene<N> = deserialize(text)?;
+/// `max_depth`: any integer `≥ 0`, held saturated at 255 so that every value above
+/// [`MAX_DEPTH`](crate::MAX_DEPTH) gets the settings check's "at most" message.
+struct Depth(u8);
+
+impl<'de> Deserialize<'de> for Depth {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct DepthVisitor;
+        impl<'de> Visitor<'de> for DepthVisitor {
+            type Value = Depth;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, "an integer from 0 to {}", crate::MAX_DEPTH)
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Depth, E> {
+                Ok(Depth(u8::try_from(v).unwrap_or(u8::MAX)))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Depth, E> {
+                match u64::try_from(v) {
+                    Ok(v) => self.visit_u64(v),
+                    Err(_) => Err(E::invalid_value(Unexpected::Signed(v), &self)),
+                }
+            }
+            fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Depth, A::Error> {
+                Err(date_or_map(map, &self))
+            }
+        }
+        d.deserialize_any(DepthVisitor)
+    }
+}
+
+/// Parses a scene file's text into a scene with capacities `N` spheres, `L` lights,
+/// `P` planes and reflection depth `D`, and its camera.
+pub fn parse<const N: usize, const L: usize, const P: usize, const D: usize>(
+    text: &str,
+) -> Result<SceneFile<N, L, P, D>, SceneFileError> {
+    let raw: RawScene<N, L, P> = deserialize(text)?;
 
     let c = &raw.camera;
     let up = c.up.as_ref().map_or(Vec3::new(0.0, 1.0, 0.0), vec3);
@@ -347,27 +525,133 @@ pub fn parse<const N: usize>(text: &str) -> Result<SceneFile<N>, SceneFileError>
 
     let background = raw.background.as_ref().map_or(Rgb888::new(0, 0, 0), rgb);
     let mut scene = Scene::new(background);
+    // Settings only when the file names one: otherwise the scene type's defaults stand.
+    if raw.ambient.is_some() || raw.max_depth.is_some() || raw.shadows.is_some() {
+        let d = scene.settings();
+        let settings = Settings {
+            ambient: raw.ambient.as_ref().map_or(d.ambient, |a| a.0),
+            max_depth: raw.max_depth.as_ref().map_or(d.max_depth, |m| m.0),
+            shadows: raw.shadows.unwrap_or(d.shadows),
+        };
+        scene.set_settings(settings).map_err(|e| {
+            let key = match e {
+                SceneError::Settings(s) => s.file_key(),
+                // `set_settings` refuses nothing but settings; the depth is what the
+                // scene type limits.
+                _ => "max_depth",
+            };
+            SceneFileError::field(key, e)
+        })?;
+    }
     for (k, s) in raw.sphere.iter().enumerate() {
         let center = vec3(&s.center);
-        let sphere = Sphere::try_new(center, s.radius.0, rgb(&s.color)).map_err(|e| {
-            let key = match e {
-                crate::SphereError::NotFinite if !center.is_finite() => "center",
-                _ => "radius",
-            };
-            SceneFileError::field(format!("sphere[{k}].{key}"), e)
-        })?;
+        let sphere = Sphere::new(center, s.radius.0, rgb(&s.color))
+            .with_material(material(&s.specular, &s.shininess, &s.reflect))
+            .check()
+            .map_err(|e| {
+                let key = match e {
+                    SphereError::NotFinite if !center.is_finite() => "center",
+                    SphereError::NotFinite | SphereError::RadiusNotPositive => "radius",
+                    SphereError::Material(m) => m.file_key(),
+                };
+                SceneFileError::field(format!("sphere[{k}].{key}"), e)
+            })?;
         scene
             .push(sphere)
-            .map_err(|e| SceneFileError::field(format!("sphere[{k}]"), e))?;
+            .map_err(|e| refused(format!("sphere[{k}]"), e))?;
+    }
+    for (k, l) in raw.light.iter().enumerate() {
+        let light =
+            light(l).map_err(|(key, reason)| SceneFileError::field(format!("light[{k}].{key}"), reason))?;
+        scene
+            .push_light(light)
+            .map_err(|e| refused(format!("light[{k}]"), e))?;
+    }
+    for (k, p) in raw.plane.iter().enumerate() {
+        let plane =
+            plane(p).map_err(|(key, reason)| SceneFileError::field(format!("plane[{k}].{key}"), reason))?;
+        scene
+            .push_plane(plane)
+            .map_err(|e| refused(format!("plane[{k}]"), e))?;
     }
     Ok(SceneFile { scene, camera })
+}
+
+/// A checked light from its table, or the key to blame and why. The `type` decides
+/// which of `direction` and `position` it takes; the other one is refused rather than
+/// ignored (a point light with a `direction` is most likely a directional light whose
+/// `type` was mistyped).
+fn light(l: &RawLight) -> Result<Light, (&'static str, String)> {
+    let (kind, own, other, value, stray) = match l.kind {
+        LightKind::Directional => ("directional", "direction", "position", &l.direction, &l.position),
+        LightKind::Point => ("point", "position", "direction", &l.position, &l.direction),
+    };
+    if stray.is_some() {
+        return Err((other, format!("a {kind} light has no {other} (give `{own}`)")));
+    }
+    let Some(value) = value else {
+        return Err((own, format!("a {kind} light needs a `{own}`")));
+    };
+    let intensity = l.intensity.as_ref().map_or(1.0, |i| i.0);
+    let light = match l.kind {
+        LightKind::Directional => Light::directional(vec3(value), intensity),
+        LightKind::Point => Light::point(vec3(value), intensity),
+    };
+    light.check().map_err(|e| {
+        let key = match e {
+            LightError::NotFinite => own,
+            LightError::ZeroDirection | LightError::Intensity => e.file_key(),
+        };
+        (key, e.to_string())
+    })
+}
+
+/// A checked plane from its table, or the key to blame and why.
+fn plane(p: &RawPlane) -> Result<Plane, (&'static str, String)> {
+    let point = vec3(&p.point);
+    let mut plane = Plane::new(point, vec3(&p.normal), rgb(&p.color)).with_material(material(
+        &p.specular,
+        &p.shininess,
+        &p.reflect,
+    ));
+    match (&p.checker, &p.checker_size) {
+        (Some(second), size) => plane = plane.with_checker(rgb(second), size.as_ref().map_or(1.0, |s| s.0)),
+        // A size alone would be silently unused: most likely `checker` was forgotten.
+        (None, Some(_)) => {
+            return Err((
+                "checker_size",
+                "checker_size needs a second colour `checker`".to_string(),
+            ))
+        }
+        (None, None) => {}
+    }
+    plane.check().map_err(|e| {
+        let key = match e {
+            PlaneError::NotFinite if !point.is_finite() => "point",
+            PlaneError::NotFinite => "normal",
+            _ => e.file_key(),
+        };
+        (key, e.to_string())
+    })
+}
+
+/// A checked object the scene refused: a mirror in a type without reflection depth
+/// blames `reflect`; anything else (a full scene, which the capped arrays already
+/// prevent) blames the object.
+fn refused(object: String, e: SceneError) -> SceneFileError {
+    match e {
+        SceneError::MirrorWithoutDepth => SceneFileError::field(format!("{object}.reflect"), e),
+        _ => SceneFileError::field(object, e),
+    }
 }
 
 /// Reads and parses a scene file; errors carry the path.
 ///
 /// Only a regular file is read (a FIFO would block, a device like `/dev/zero` never
 /// ends), and at most [`MAX_FILE_SIZE`] bytes of it.
-pub fn load<const N: usize>(path: impl AsRef<Path>) -> Result<SceneFile<N>, SceneFileError> {
+pub fn load<const N: usize, const L: usize, const P: usize, const D: usize>(
+    path: impl AsRef<Path>,
+) -> Result<SceneFile<N, L, P, D>, SceneFileError> {
     let path = path.as_ref();
     let with_path = |mut e: SceneFileError| {
         e.path = Some(path.to_path_buf());
@@ -432,7 +716,9 @@ fn camera_field(e: CameraError, size: Size) -> String {
 }
 
 /// TOML → raw structs, with the failing field's path and line.
-fn deserialize<const N: usize>(text: &str) -> Result<RawScene<N>, SceneFileError> {
+fn deserialize<const N: usize, const L: usize, const P: usize>(
+    text: &str,
+) -> Result<RawScene<N, L, P>, SceneFileError> {
     let line_of = |e: &toml::de::Error| {
         e.span()
             .map(|s| text.get(..s.start).unwrap_or(text).matches('\n').count() + 1)
@@ -474,7 +760,7 @@ color = [255, 64, 64]
 "#;
 
     fn err(text: &str) -> SceneFileError {
-        match parse::<4>(text) {
+        match parse::<4, 0, 0, 0>(text) {
             Ok(_) => panic!("accepted:\n{text}"),
             Err(e) => e,
         }
@@ -482,7 +768,7 @@ color = [255, 64, 64]
 
     #[test]
     fn parses_the_documented_format() {
-        let f = parse::<4>(GOOD).unwrap();
+        let f = parse::<4, 0, 0, 0>(GOOD).unwrap();
         assert_eq!(f.scene.spheres().len(), 1);
         assert_eq!(f.scene.background(), Rgb888::new(10, 20, 30));
         assert_eq!(f.camera.size(), Size::new(32, 24));
@@ -535,12 +821,12 @@ color = [255, 64, 64]
     fn too_many_spheres() {
         let sphere = GOOD.split_once("[[sphere]]").unwrap().1;
         let text = format!("{GOOD}[[sphere]]{sphere}[[sphere]]{sphere}");
-        assert_eq!(parse::<3>(&text).unwrap().scene.spheres().len(), 3);
-        let e = parse::<2>(&text).unwrap_err();
+        assert_eq!(parse::<3, 0, 0, 0>(&text).unwrap().scene.spheres().len(), 3);
+        let e = parse::<2, 0, 0, 0>(&text).unwrap_err();
         assert_eq!(e.field.as_deref(), Some("sphere"));
         assert_eq!(e.reason, "more than 2 spheres: at most 2 are supported");
         assert_eq!(
-            parse::<1>(&text).unwrap_err().reason,
+            parse::<1, 0, 0, 0>(&text).unwrap_err().reason,
             "more than 1 sphere: at most 1 is supported"
         );
     }
@@ -552,9 +838,12 @@ color = [255, 64, 64]
         let sphere = GOOD.split_once("[[sphere]]").unwrap().1;
         let bad = sphere.replace("radius = 1.0", "radius = \"big\"");
         let text = format!("{GOOD}[[sphere]]{sphere}[[sphere]]{bad}");
-        assert_eq!(parse::<2>(&text).unwrap_err().field.as_deref(), Some("sphere"));
         assert_eq!(
-            parse::<3>(&text).unwrap_err().field.as_deref(),
+            parse::<2, 0, 0, 0>(&text).unwrap_err().field.as_deref(),
+            Some("sphere")
+        );
+        assert_eq!(
+            parse::<3, 0, 0, 0>(&text).unwrap_err().field.as_deref(),
             Some("sphere[2].radius")
         );
     }
@@ -654,7 +943,468 @@ color = [255, 64, 64]
 
         // Far-away points and huge vectors are valid cameras, not "same point" or
         // "parallel".
-        parse::<4>(&GOOD.replace("eye = [0.0, 0.0, 5.0]", "eye = [0.0, 0.0, 1e20]")).unwrap();
-        parse::<4>(&GOOD.replace("fov_y_deg", "up = [0, 3e38, 3e38]\nfov_y_deg")).unwrap();
+        parse::<4, 0, 0, 0>(&GOOD.replace("eye = [0.0, 0.0, 5.0]", "eye = [0.0, 0.0, 1e20]")).unwrap();
+        parse::<4, 0, 0, 0>(&GOOD.replace("fov_y_deg", "up = [0, 3e38, 3e38]\nfov_y_deg")).unwrap();
+    }
+
+    /// Every new key at a non-default value: two lights, a material, a checkered
+    /// mirror floor and the settings.
+    const LIT: &str = r#"
+ambient = 0.2
+max_depth = 3
+shadows = false
+[camera]
+eye = [0.0, 0.0, 5.0]
+look_at = [0.0, 0.0, 0.0]
+fov_y_deg = 60.0
+width = 32
+height = 24
+[[light]]
+type = "directional"
+direction = [-1.0, -2.0, -1.0]
+intensity = 0.8
+[[light]]
+type = "point"
+position = [2.0, 5.0, 3.0]
+intensity = 0.5
+[[sphere]]
+center = [0.0, 0.0, 0.0]
+radius = 1.0
+color = [255, 64, 64]
+specular = 0.5
+shininess = 16
+reflect = 0.3
+[[plane]]
+point = [0.0, -1.0, 0.0]
+normal = [0.0, 2.0, 0.0]
+color = [220, 220, 220]
+checker = [40, 40, 40]
+checker_size = 2.0
+specular = 0.25
+shininess = 8
+reflect = 0.1
+"#;
+
+    /// The capacities the host tools load with, shrunk to the test files.
+    type Full = SceneFile<4, 2, 2, 8>;
+
+    fn full(text: &str) -> Result<Full, SceneFileError> {
+        parse(text)
+    }
+
+    fn full_err(text: &str) -> SceneFileError {
+        match full(text) {
+            Ok(_) => panic!("accepted:\n{text}"),
+            Err(e) => e,
+        }
+    }
+
+    #[test]
+    fn parses_lights_planes_materials_and_settings() {
+        let f = full(LIT).unwrap();
+        let scene = &f.scene;
+        assert_eq!(
+            scene.settings(),
+            Settings {
+                ambient: 0.2,
+                max_depth: 3,
+                shadows: false
+            }
+        );
+        assert_eq!(scene.max_depth(), 3);
+        assert_eq!(
+            scene.lights(),
+            [
+                Light::directional(Vec3::new(-1.0, -2.0, -1.0), 0.8),
+                Light::point(Vec3::new(2.0, 5.0, 3.0), 0.5)
+            ]
+        );
+        assert_eq!(scene.spheres()[0].material, Material::new(0.5, 16.0, 0.3));
+        let plane = Plane::new(
+            Vec3::new(0.0, -1.0, 0.0),
+            Vec3::new(0.0, 2.0, 0.0),
+            Rgb888::new(220, 220, 220),
+        )
+        .with_checker(Rgb888::new(40, 40, 40), 2.0)
+        .with_material(Material::new(0.25, 8.0, 0.1));
+        assert_eq!(scene.planes(), [plane]);
+        assert!(f.has_features());
+        assert!(f.spheres_only().is_none());
+    }
+
+    #[test]
+    fn missing_new_keys_take_their_defaults() {
+        let light = "[[light]]\ntype = \"point\"\nposition = [0.0, 4.0, 0.0]\n";
+        let plane = "[[plane]]\npoint = [0.0, -1.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\ncolor = [1, 2, 3]\n";
+        let f = full(&format!("{GOOD}{light}{plane}")).unwrap();
+        assert_eq!(f.scene.lights()[0].intensity(), 1.0);
+        assert_eq!(f.scene.spheres()[0].material, Material::DEFAULT);
+        let p = f.scene.planes()[0];
+        assert_eq!(
+            (p.checker, p.checker_size, p.material),
+            (None, 1.0, Material::DEFAULT)
+        );
+        assert_eq!(f.scene.settings(), Settings::DEFAULT);
+
+        // A checker without a size: cells of side 1.
+        let checkered = plane.replace("color = [1, 2, 3]", "color = [1, 2, 3]\nchecker = [9, 9, 9]");
+        let p = full(&format!("{GOOD}{checkered}")).unwrap().scene.planes()[0];
+        assert_eq!((p.checker, p.checker_size), (Some(Rgb888::new(9, 9, 9)), 1.0));
+
+        // One setting given: the others keep their defaults.
+        let f = full(&format!("shadows = false\n{GOOD}")).unwrap();
+        assert_eq!(
+            f.scene.settings(),
+            Settings {
+                shadows: false,
+                ..Settings::DEFAULT
+            }
+        );
+        let f = full(&format!("ambient = 0\nmax_depth = 8\n{GOOD}")).unwrap();
+        assert_eq!((f.scene.settings().ambient, f.scene.max_depth()), (0.0, 8));
+
+        // Without settings, a type with a shallower depth keeps its own default, also
+        // when another setting is given.
+        let f = parse::<4, 1, 1, 1>(GOOD).unwrap();
+        assert_eq!(f.scene.settings().max_depth, 1);
+        let f = parse::<4, 0, 0, 0>(&format!("ambient = 0.3\n{GOOD}")).unwrap();
+        assert_eq!(
+            (f.scene.settings().ambient, f.scene.settings().max_depth),
+            (0.3, 0)
+        );
+    }
+
+    /// A file without the new keys is the same scene and the same errors whatever the
+    /// capacities it is loaded with, and converts back to the spheres-only type.
+    #[test]
+    fn files_without_new_keys_mean_what_they_meant() {
+        let old = parse::<4, 0, 0, 0>(GOOD).unwrap();
+        let new = full(GOOD).unwrap();
+        assert_eq!(new.scene.spheres(), old.scene.spheres());
+        assert_eq!(new.scene.background(), old.scene.background());
+        assert!(new.scene.lights().is_empty() && new.scene.planes().is_empty());
+        assert!(!new.has_features());
+        let back = new.spheres_only().unwrap();
+        assert_eq!(back.scene.spheres(), old.scene.spheres());
+        assert_eq!(back.scene.background(), old.scene.background());
+        assert_eq!(back.camera.params(), old.camera.params());
+
+        // Highlights and settings without a light, plane or mirror change no pixel:
+        // still the spheres-only scene.
+        let shiny = format!(
+            "ambient = 0.5\n{}",
+            GOOD.replace("radius = 1.0", "radius = 1.0\nspecular = 1")
+        );
+        assert!(full(&shiny).unwrap().spheres_only().is_some());
+        // A mirror alone is a feature (even at depth 0 it mixes in the background).
+        let mirror = GOOD.replace("radius = 1.0", "radius = 1.0\nreflect = 0.5");
+        assert!(full(&mirror).unwrap().spheres_only().is_none());
+
+        for (from, to) in [
+            ("width = 32", "width = 32\nzoom = 2"),
+            ("width = 32", "width = \"wide\""),
+            ("radius = 1.0", "radius = 0.0"),
+            ("[255, 64, 64]", "[256, 64, 64]"),
+            ("background = [10, 20, 30]", "background = [10, 20, 30]\nfog = 1"),
+            ("fov_y_deg = 60.0", "fov_y_deg = 180.0"),
+            ("center = [0.0, 0.0, 0.0]", "center = [nan, 0.0, 0.0]"),
+        ] {
+            let text = GOOD.replace(from, to);
+            assert_eq!(full_err(&text), err(&text), "{to}");
+        }
+    }
+
+    #[test]
+    fn every_new_field_has_its_error() {
+        for (from, to, field, reason) in [
+            // Settings.
+            (
+                "ambient = 0.2",
+                "ambient = 1.5",
+                "ambient",
+                "ambient must be between 0 and 1",
+            ),
+            (
+                "ambient = 0.2",
+                "ambient = -0.1",
+                "ambient",
+                "ambient must be between 0 and 1",
+            ),
+            (
+                "ambient = 0.2",
+                "ambient = nan",
+                "ambient",
+                "ambient must be between 0 and 1",
+            ),
+            (
+                "max_depth = 3",
+                "max_depth = 9",
+                "max_depth",
+                "max_depth must be at most 8",
+            ),
+            (
+                "max_depth = 3",
+                "max_depth = 1000",
+                "max_depth",
+                "max_depth must be at most 8",
+            ),
+            (
+                "max_depth = 3",
+                "max_depth = -1",
+                "max_depth",
+                "expected an integer from 0 to 8",
+            ),
+            (
+                "max_depth = 3",
+                "max_depth = 2.5",
+                "max_depth",
+                "invalid type: floating point",
+            ),
+            (
+                "shadows = false",
+                "shadows = 1",
+                "shadows",
+                "invalid type: integer",
+            ),
+            // Lights.
+            (
+                "direction = [-1.0, -2.0, -1.0]",
+                "direction = [0.0, 0.0, 0.0]",
+                "light[0].direction",
+                "a directional light's direction must not be zero",
+            ),
+            (
+                "direction = [-1.0, -2.0, -1.0]",
+                "direction = [-1.0, inf, -1.0]",
+                "light[0].direction",
+                "must be finite",
+            ),
+            (
+                "position = [2.0, 5.0, 3.0]",
+                "position = [2.0, nan, 3.0]",
+                "light[1].position",
+                "must be finite",
+            ),
+            (
+                "intensity = 0.8",
+                "intensity = -0.5",
+                "light[0].intensity",
+                "intensity must be a finite number of at least 0",
+            ),
+            (
+                "intensity = 0.5",
+                "intensity = inf",
+                "light[1].intensity",
+                "at least 0",
+            ),
+            (
+                "type = \"directional\"",
+                "type = \"spot\"",
+                "light[0].type",
+                "unknown variant `spot`, expected `directional` or `point`",
+            ),
+            ("type = \"directional\"\n", "", "light[0]", "missing field `type`"),
+            (
+                "position = [2.0, 5.0, 3.0]",
+                "direction = [2.0, 5.0, 3.0]",
+                "light[1].direction",
+                "a point light has no direction (give `position`)",
+            ),
+            (
+                "position = [2.0, 5.0, 3.0]\n",
+                "",
+                "light[1].position",
+                "a point light needs a `position`",
+            ),
+            (
+                "direction = [-1.0, -2.0, -1.0]",
+                "position = [-1.0, -2.0, -1.0]",
+                "light[0].position",
+                "a directional light has no position (give `direction`)",
+            ),
+            (
+                "direction = [-1.0, -2.0, -1.0]\n",
+                "",
+                "light[0].direction",
+                "a directional light needs a `direction`",
+            ),
+            (
+                "direction = [-1.0, -2.0, -1.0]",
+                "direction = [-1.0, -2.0]",
+                "light[0].direction",
+                "expected 3 values, found 2",
+            ),
+            (
+                "intensity = 0.8",
+                "color = [1, 2, 3]",
+                "light[0].color",
+                "unknown field `color`",
+            ),
+            // Sphere materials.
+            (
+                "specular = 0.5",
+                "specular = 1.5",
+                "sphere[0].specular",
+                "specular must be between 0 and 1",
+            ),
+            (
+                "shininess = 16",
+                "shininess = 0.5",
+                "sphere[0].shininess",
+                "shininess must be a finite number of at least 1",
+            ),
+            (
+                "reflect = 0.3",
+                "reflect = -0.3",
+                "sphere[0].reflect",
+                "reflect must be between 0 and 1",
+            ),
+            // Planes.
+            (
+                "normal = [0.0, 2.0, 0.0]",
+                "normal = [0.0, 0.0, 0.0]",
+                "plane[0].normal",
+                "the plane's normal must not be zero",
+            ),
+            (
+                "normal = [0.0, 2.0, 0.0]",
+                "normal = [0.0, nan, 0.0]",
+                "plane[0].normal",
+                "must be finite",
+            ),
+            (
+                "point = [0.0, -1.0, 0.0]",
+                "point = [0.0, -inf, 0.0]",
+                "plane[0].point",
+                "must be finite",
+            ),
+            (
+                "checker_size = 2.0",
+                "checker_size = 0.0",
+                "plane[0].checker_size",
+                "checker_size must be a finite number greater than 0",
+            ),
+            (
+                "checker = [40, 40, 40]\n",
+                "",
+                "plane[0].checker_size",
+                "checker_size needs a second colour `checker`",
+            ),
+            (
+                "checker = [40, 40, 40]",
+                "checker = [40, 40, 40, 40]",
+                "plane[0].checker",
+                "expected 3 values, found 4",
+            ),
+            (
+                "checker = [40, 40, 40]",
+                "checker = [40, 256, 40]",
+                "plane[0].checker[1]",
+                "invalid value",
+            ),
+            (
+                "specular = 0.25",
+                "specular = 2",
+                "plane[0].specular",
+                "specular must be between 0 and 1",
+            ),
+            (
+                "shininess = 8",
+                "shininess = 0",
+                "plane[0].shininess",
+                "shininess must be a finite number of at least 1",
+            ),
+            (
+                "reflect = 0.1",
+                "reflect = 1.01",
+                "plane[0].reflect",
+                "reflect must be between 0 and 1",
+            ),
+            (
+                "normal = [0.0, 2.0, 0.0]\n",
+                "",
+                "plane[0]",
+                "missing field `normal`",
+            ),
+            (
+                "checker_size = 2.0",
+                "size = 2.0",
+                "plane[0].size",
+                "unknown field `size`",
+            ),
+        ] {
+            assert_eq!(LIT.matches(from).count(), 1, "{from}");
+            let e = full_err(&LIT.replace(from, to));
+            assert_eq!(e.field.as_deref(), Some(field), "{to}: {e}");
+            assert!(e.reason.contains(reason), "{to}: {e}");
+        }
+        // The parser's own errors also give the line.
+        let e = full_err(&LIT.replace("\"directional\"", "\"spot\""));
+        assert_eq!(
+            e.line,
+            Some(
+                LIT.lines()
+                    .position(|l| l.contains("directional"))
+                    .map(|l| l + 1)
+                    .unwrap()
+            )
+        );
+    }
+
+    /// The capacities are the limits: too many lights or planes, a mirror or a depth
+    /// the type cannot trace.
+    #[test]
+    fn the_scene_type_limits_lights_planes_and_mirrors() {
+        let e = parse::<4, 1, 2, 8>(LIT).unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("light"));
+        assert_eq!(e.reason, "more than 1 light: at most 1 is supported");
+        let e = parse::<4, 0, 2, 8>(LIT).unwrap_err();
+        assert_eq!(e.reason, "more than 0 lights: at most 0 are supported");
+
+        let second = LIT.split_once("[[plane]]").unwrap().1;
+        let e = parse::<4, 2, 1, 8>(&format!("{LIT}[[plane]]{second}")).unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("plane"));
+        assert_eq!(e.reason, "more than 1 plane: at most 1 is supported");
+        assert_eq!(
+            parse::<4, 2, 2, 8>(&format!("{LIT}[[plane]]{second}"))
+                .unwrap()
+                .scene
+                .planes()
+                .len(),
+            2
+        );
+
+        // A depth the type cannot trace.
+        let e = parse::<4, 2, 2, 2>(LIT).unwrap_err();
+        assert_eq!(e.to_string(), "max_depth: max_depth must be at most 2");
+
+        // A mirror in a type without reflection depth: the sphere's, then the plane's.
+        let shallow = LIT.replace("max_depth = 3\n", "");
+        let e = parse::<4, 2, 2, 0>(&shallow).unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("sphere[0].reflect"));
+        assert!(e.reason.contains("reflection depth"), "{e}");
+        let e = parse::<4, 2, 2, 0>(&shallow.replace("reflect = 0.3\n", "")).unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("plane[0].reflect"));
+        // reflect = 0 is no mirror.
+        parse::<4, 2, 2, 0>(
+            &shallow
+                .replace("reflect = 0.3", "reflect = 0")
+                .replace("reflect = 0.1", "reflect = 0"),
+        )
+        .unwrap();
+    }
+
+    /// The light count is checked while the array is read, like the spheres'.
+    #[test]
+    fn light_count_is_checked_while_parsing() {
+        let text = LIT.replace("intensity = 0.5", "intensity = \"bright\"");
+        assert_eq!(
+            parse::<4, 1, 2, 8>(&text).unwrap_err().field.as_deref(),
+            Some("light")
+        );
+        assert_eq!(
+            parse::<4, 2, 2, 8>(&text).unwrap_err().field.as_deref(),
+            Some("light[1].intensity")
+        );
     }
 }

@@ -6,6 +6,9 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+#[path = "../examples/common/standard.rs"]
+mod standard;
+
 fn render_bin() -> PathBuf {
     // target/<profile>/deps/cli-<hash> → target/<profile>/examples/render
     let exe = std::env::current_exe().unwrap();
@@ -498,6 +501,10 @@ fn help_flag_forms_and_repeated_or_missing_values() {
         let text = String::from_utf8_lossy(&o.stdout);
         assert!(text.starts_with("usage: render"), "{text}");
         assert!(text.contains("Worst case measured"), "{text}");
+        for scene in standard::FEATURE_SCENES {
+            assert!(text.contains(&format!("scenes/{scene}.toml")), "{scene}: {text}");
+        }
+        assert!(text.contains("8 lights and 8 planes"), "{text}");
     }
     // `--flag=value` forms.
     let o = run_in(
@@ -610,14 +617,18 @@ fn decode(bytes: &[u8]) -> (u32, u32, Vec<u8>) {
 
 #[test]
 fn the_streamed_png_has_the_renders_pixels() {
-    use embedded_graphics::pixelcolor::RgbColor;
+    use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
     use embedded_raytracer::{scene_file, Render};
     let dir = scratch("pixels");
-    for scene in ["lab", "crowd"] {
+    let png_of = |scene: &str| {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/{scene}.toml"));
         assert_rendered(&run_in(&dir, &[path.as_os_str()]));
-        let (w, h, pixels) = decode(&std::fs::read(dir.join(format!("{scene}.png"))).unwrap());
-        let file = scene_file::load::<256>(&path).unwrap();
+        decode(&std::fs::read(dir.join(format!("{scene}.png"))).unwrap())
+    };
+    // Spheres only: the spheres-only type's render.
+    for scene in ["lab", "crowd"] {
+        let (w, h, pixels) = png_of(scene);
+        let file = scene_file::load::<256, 0, 0, 0>(standard::path(scene)).unwrap();
         let mut expected = Vec::new();
         Render::<256>::new(&file.scene, &file.camera)
             .trace(|s| expected.extend([s.color.r(), s.color.g(), s.color.b()]));
@@ -627,6 +638,266 @@ fn the_streamed_png_has_the_renders_pixels() {
             "{scene}: the PNG's pixels differ from the render's"
         );
     }
+    // Lights, planes, mirrors: the full type's render, whatever it draws.
+    for scene in standard::FEATURE_SCENES {
+        let (w, h, pixels) = png_of(scene);
+        let file = standard::load_full(scene);
+        let mut expected = Vec::new();
+        use standard::{MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
+        let render: Render<'_, MAX_SPHERES, Rgb888, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH> =
+            Render::new(&file.scene, &file.camera);
+        render.trace(|s| expected.extend([s.color.r(), s.color.g(), s.color.b()]));
+        assert_eq!((w, h), (file.camera.size().width, file.camera.size().height));
+        assert!(
+            pixels == expected,
+            "{scene}: the PNG's pixels differ from the render's"
+        );
+    }
+}
+
+// --- Lights, planes and mirrors ---
+
+/// A small scene with every new key: two lights, a mirror sphere, a checkered floor.
+const LIT: &str = "ambient = 0.2\nmax_depth = 3\nshadows = true\n\
+[camera]\neye = [0.0, 1.0, 5.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 60.0\nwidth = 32\nheight = 24\n\
+[[light]]\ntype = \"directional\"\ndirection = [-1.0, -2.0, -1.0]\nintensity = 0.8\n\
+[[light]]\ntype = \"point\"\nposition = [2.0, 5.0, 3.0]\n\
+[[sphere]]\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\ncolor = [255, 64, 64]\nspecular = 0.5\nshininess = 32\nreflect = 0.3\n\
+[[plane]]\npoint = [0.0, -1.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\ncolor = [220, 220, 220]\nchecker = [40, 40, 40]\n";
+
+/// Each bad new field: exit code 2, one message naming the file, the field and the
+/// reason, and no output created.
+#[test]
+fn bad_new_fields_exit_2_naming_file_field_and_reason() {
+    let dir = scratch("bad-new-fields");
+    assert_rendered(&run_in(&dir, &[write(&dir, "lit.toml", LIT)]));
+    assert!(is_png(&std::fs::read(dir.join("lit.png")).unwrap()));
+
+    let light = LIT
+        .split_once("[[light]]")
+        .unwrap()
+        .1
+        .split_once("[[light]]")
+        .unwrap()
+        .0;
+    let plane = LIT.split_once("[[plane]]").unwrap().1;
+    // LIT has 2 lights and 1 plane: `total` of one kind.
+    let with = |table: &str, body: &str, total: usize| {
+        let have = if table == "light" { 2 } else { 1 };
+        format!("{LIT}{}", format!("[[{table}]]{body}").repeat(total - have))
+    };
+    let cases: [(&str, String, &str, &str); 14] = [
+        (
+            "zero-normal",
+            LIT.replace("normal = [0.0, 1.0, 0.0]", "normal = [0.0, 0.0, 0.0]"),
+            "plane[0].normal",
+            "must not be zero",
+        ),
+        (
+            "zero-direction",
+            LIT.replace("[-1.0, -2.0, -1.0]", "[0, 0, 0]"),
+            "light[0].direction",
+            "must not be zero",
+        ),
+        (
+            "negative-intensity",
+            LIT.replace("intensity = 0.8", "intensity = -1"),
+            "light[0].intensity",
+            "at least 0",
+        ),
+        (
+            "ambient",
+            LIT.replace("ambient = 0.2", "ambient = 2"),
+            "ambient",
+            "between 0 and 1",
+        ),
+        (
+            "specular",
+            LIT.replace("specular = 0.5", "specular = 1.5"),
+            "sphere[0].specular",
+            "between 0 and 1",
+        ),
+        (
+            "reflect",
+            LIT.replace("reflect = 0.3", "reflect = -0.3"),
+            "sphere[0].reflect",
+            "between 0 and 1",
+        ),
+        (
+            "shininess",
+            LIT.replace("shininess = 32", "shininess = 0.5"),
+            "sphere[0].shininess",
+            "at least 1",
+        ),
+        (
+            "max-depth",
+            LIT.replace("max_depth = 3", "max_depth = 9"),
+            "max_depth",
+            "at most 8",
+        ),
+        (
+            "unknown-type",
+            LIT.replace("\"point\"", "\"spot\""),
+            "light[1].type",
+            "unknown variant `spot`",
+        ),
+        (
+            "point-without-position",
+            LIT.replace("position = [2.0, 5.0, 3.0]\n", ""),
+            "light[1].position",
+            "needs a `position`",
+        ),
+        (
+            "point-with-direction",
+            LIT.replace("position = [2.0, 5.0, 3.0]", "direction = [2.0, 5.0, 3.0]"),
+            "light[1].direction",
+            "has no direction",
+        ),
+        (
+            "checker-size",
+            LIT.replace(
+                "checker = [40, 40, 40]",
+                "checker = [40, 40, 40]\nchecker_size = 0",
+            ),
+            "plane[0].checker_size",
+            "greater than 0",
+        ),
+        (
+            "nine-lights",
+            with("light", light, 9),
+            "light",
+            "more than 8 lights: at most 8 are supported",
+        ),
+        (
+            "nine-planes",
+            with("plane", plane, 9),
+            "plane",
+            "more than 8 planes: at most 8 are supported",
+        ),
+    ];
+    for (name, text, field, reason) in cases {
+        let file = dir.join(format!("{name}.toml"));
+        std::fs::write(&file, text).unwrap();
+        let out = dir.join(format!("{name}.png"));
+        let o = run(&[file.to_str().unwrap(), "--output", out.to_str().unwrap()]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: {err}");
+        assert!(
+            err.starts_with(&format!("error: {}: ", file.display())),
+            "{name}: {err}"
+        );
+        assert!(
+            err.contains(&format!(" {field}: ")),
+            "{name}: `{field}` not named: {err}"
+        );
+        assert!(err.contains(reason), "{name}: `{reason}` not in: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{name}: one message: {err}");
+        assert!(!out.exists(), "{name}: output created");
+    }
+    // Eight of each is the capacity: accepted.
+    assert_rendered(&run_in(
+        &dir,
+        &[write(&dir, "eight-lights.toml", &with("light", light, 8))],
+    ));
+    assert_rendered(&run_in(
+        &dir,
+        &[write(&dir, "eight-planes.toml", &with("plane", plane, 8))],
+    ));
+    let leftovers = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .count();
+    assert_eq!(leftovers, 0);
+}
+
+/// `text` as `dir/name`; the name, for `run_in(dir, …)`.
+fn write<'n>(dir: &Path, name: &'n str, text: &str) -> &'n str {
+    std::fs::write(dir.join(name), text).unwrap();
+    name
+}
+
+/// The standard feature scenes are what their names promise, load with the CLI's
+/// capacities and render to a PNG of their size; the summary says what they hold.
+#[test]
+fn the_feature_scenes_load_and_render() {
+    let dir = scratch("feature-scenes");
+    for scene in standard::FEATURE_SCENES {
+        let file = standard::load_full(scene);
+        assert!(file.has_features(), "{scene}");
+        let s = &file.scene;
+        let [floor] = s.planes() else {
+            panic!("{scene}: one floor plane")
+        };
+        assert!(floor.checker.is_some(), "{scene}: the floor is checkered");
+        assert!(s.settings().shadows, "{scene}: shadows on");
+        assert!(s.spheres().len() >= 3, "{scene}");
+        assert_eq!(
+            file.camera.size(),
+            embedded_graphics::geometry::Size::new(240, 240)
+        );
+
+        let o = run_in(&dir, &[standard::path(scene)]);
+        assert_rendered(&o);
+        let summary = String::from_utf8_lossy(&o.stdout);
+        let lights = s.lights().len();
+        assert!(
+            summary.contains(&format!("240x240 pixels ({lights} light")),
+            "{scene}: {summary}"
+        );
+        let (w, h, _) = decode(&std::fs::read(dir.join(format!("{scene}.png"))).unwrap());
+        assert_eq!((w, h), (240, 240));
+    }
+
+    // shadows: a directional and a point light, a sphere resting exactly on the floor.
+    let shadows = standard::load_full("shadows");
+    let s = &shadows.scene;
+    use embedded_raytracer::Light;
+    assert!(s.lights().iter().any(|l| matches!(l, Light::Directional { .. })));
+    assert!(s.lights().iter().any(|l| matches!(l, Light::Point { .. })));
+    let floor = s.planes()[0];
+    let up = floor.normal.try_normalize().unwrap();
+    assert!(
+        s.spheres()
+            .iter()
+            .any(|b| (b.center - floor.point).dot(up) == b.radius),
+        "no sphere rests exactly on the floor"
+    );
+    // mirrors: depth 3 and mirror spheres.
+    let mirrors = standard::load_full("mirrors");
+    assert_eq!(mirrors.scene.max_depth(), 3);
+    let mirror_spheres = mirrors
+        .scene
+        .spheres()
+        .iter()
+        .filter(|b| b.material.reflect >= 0.5)
+        .count();
+    assert!(mirror_spheres >= 2, "{mirror_spheres} mirror spheres");
+}
+
+/// A file without lights, planes or mirrors is drawn through the spheres-only type:
+/// the new keys that change nothing without them (highlights, settings) leave the PNG
+/// byte-identical, and the summary is the Lab #1 one.
+#[test]
+fn a_file_without_features_keeps_its_png() {
+    let dir = scratch("no-features");
+    let lab = std::fs::read_to_string(standard::path("lab")).unwrap();
+    let inert = format!(
+        "ambient = 0.5\nmax_depth = 8\nshadows = false\n{}",
+        lab.replace("radius = 1.0", "radius = 1.0\nspecular = 0.9\nshininess = 4")
+    );
+    assert_ne!(inert, lab);
+    let o = run_in(&dir, &[write(&dir, "lab.toml", &lab)]);
+    assert_rendered(&o);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("320x240 pixels, method"));
+    let plain = std::fs::read(dir.join("lab.png")).unwrap();
+    let o = run_in(&dir, &[write(&dir, "inert.toml", &inert)]);
+    assert_rendered(&o);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("320x240 pixels, method"));
+    assert!(
+        std::fs::read(dir.join("inert.png")).unwrap() == plain,
+        "the PNG changed"
+    );
 }
 
 /// The CLI's reported peak memory, in MB.
@@ -673,7 +944,7 @@ fn memory_does_not_grow_with_the_height() {
 fn the_measured_worst_case_is_the_worst_accepted_scene() {
     use embedded_raytracer::camera::MAX_RESOLUTION;
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/cli_worst_case.toml");
-    let file = embedded_raytracer::scene_file::load::<256>(&path).unwrap();
+    let file = embedded_raytracer::scene_file::load::<256, 0, 0, 0>(&path).unwrap();
     assert_eq!(
         file.camera.size(),
         embedded_graphics::geometry::Size::new(MAX_RESOLUTION, MAX_RESOLUTION)

@@ -262,7 +262,7 @@ const GOOD: &str = "background = [10, 20, 30]\n[camera]\neye = [0.0, 0.0, 5.0]\n
 
 /// The error contract of `scene_file::parse`: it names a field or a line.
 fn check_parse(text: &str) -> Result<(), TestCaseError> {
-    match scene_file::parse::<4>(text) {
+    match scene_file::parse::<4, 0, 0, 0>(text) {
         Ok(f) => {
             prop_assert!(f.scene.spheres().len() <= 4);
         }

@@ -850,4 +850,45 @@ mod tests {
         assert_eq!(m.coverage_errors, truth.count_hits(0));
         assert!(m.worst_error_margin.is_infinite());
     }
+
+    #[test]
+    fn colour_metrics_count_every_decidable_pixel() {
+        let sphere = crate::Sphere::new(Vec3::ZERO, 1.0, Rgb888::new(255, 64, 64));
+        let scene_on = |bg: Rgb888| {
+            let mut scene: Scene<1> = Scene::new(bg);
+            scene.push(sphere).unwrap();
+            scene
+        };
+        let scene = scene_on(Rgb888::new(10, 10, 10));
+        let cam = Camera::new(
+            Vec3::new(0.0, 0.0, 5.0),
+            Vec3::ZERO,
+            Vec3::new(0.0, 1.0, 0.0),
+            0.6,
+            Size::new(16, 12),
+        )
+        .unwrap();
+        let render_it = Render::<1, Rgb888>::new(&scene, &cam);
+        // Against its own reference: nothing more than 2 levels off.
+        let m = compare(&render_it, &render(&scene, &cam));
+        assert_eq!(m.over_2, 0);
+        assert!(m.color_max <= 1 && m.color_mean < 1.0, "{m:?}");
+        // A reference whose background is 3 levels redder: every decidable background
+        // pixel is over 2 (the sphere's are not), the largest error is 3.
+        let other = render(&scene_on(Rgb888::new(13, 10, 10)), &cam);
+        let background = other
+            .pixels
+            .iter()
+            .filter(|p| p.hit.is_none() && !p.undecidable)
+            .count();
+        assert!(background > 50, "{background}");
+        let m = compare(&render_it, &other);
+        assert_eq!(m.over_2, background);
+        assert_eq!(m.color_max, 3);
+        let decidable = (m.pixels - m.undecidable) as f64;
+        assert!(m.color_mean >= background as f64 / decidable, "{m:?}");
+        // Two levels are within tolerance.
+        let m = compare(&render_it, &render(&scene_on(Rgb888::new(12, 10, 10)), &cam));
+        assert_eq!((m.over_2, m.color_max), (0, 2));
+    }
 }

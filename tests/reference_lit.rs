@@ -359,10 +359,42 @@ fn lab1_scenes_trace_the_same_through_the_lit_path() {
     assert!(hits > 200, "{hits}");
 }
 
-/// A lit scene like the standard `shadows`/`mirrors` ones: a matte sphere resting on a
-/// checkered floor, a mirror sphere and a glossy one over it, one directional and one
-/// point light, reflections to depth 3.
-fn lit_scene() -> Scene<3, 2, 1, 3> {
+const FLOOR_LIGHT: Rgb888 = Rgb888::new(220, 220, 220);
+const FLOOR_DARK: Rgb888 = Rgb888::new(40, 40, 40);
+
+/// The checkered floor `y = −1` with a mirror weight.
+fn floor(reflect: f32) -> Plane {
+    Plane::new(v(0.0, -1.0, 0.0), v(0.0, 1.0, 0.0), FLOOR_LIGHT)
+        .with_checker(FLOOR_DARK, 1.0)
+        .with_material(Material::new(0.0, 32.0, reflect))
+}
+
+const LIGHTS: [Light; 2] = [
+    Light::directional(Vec3::new(-1.0, -2.0, -1.0), 0.7),
+    Light::point(Vec3::new(3.0, 4.0, 4.0), 0.6),
+];
+
+/// Like the standard `shadows` scene: spheres on a checkered floor (one resting on it,
+/// one sunk into it) under one directional and one point light.
+fn shadows_scene() -> Scene<3, 2, 1> {
+    Scene::from_arrays(
+        [
+            Sphere::new(v(0.0, 0.0, 0.0), 1.0, Rgb888::new(230, 60, 50))
+                .with_material(Material::new(0.4, 32.0, 0.0)),
+            Sphere::new(v(-2.2, 0.6, -1.0), 0.8, Rgb888::new(200, 200, 210)),
+            Sphere::new(v(1.9, -0.8, 0.8), 0.6, Rgb888::new(60, 90, 230))
+                .with_material(Material::new(0.5, 16.0, 0.0)),
+        ],
+        LIGHTS,
+        [floor(0.0)],
+        Rgb888::new(20, 30, 60),
+        Settings::DEFAULT,
+    )
+}
+
+/// Like the standard `mirrors` scene: mirror spheres over the checkered floor (itself a
+/// faint mirror), the same lights, reflections to depth 3.
+fn mirrors_scene() -> Scene<3, 2, 1, 3> {
     Scene::from_arrays(
         [
             Sphere::new(v(0.0, 0.0, 0.0), 1.0, Rgb888::new(230, 60, 50))
@@ -372,15 +404,8 @@ fn lit_scene() -> Scene<3, 2, 1, 3> {
             Sphere::new(v(1.9, -0.4, 0.8), 0.6, Rgb888::new(60, 90, 230))
                 .with_material(Material::new(0.5, 16.0, 0.3)),
         ],
-        [
-            Light::directional(v(-1.0, -2.0, -1.0), 0.7),
-            Light::point(v(3.0, 4.0, 4.0), 0.6),
-        ],
-        [
-            Plane::new(v(0.0, -1.0, 0.0), v(0.0, 1.0, 0.0), Rgb888::new(220, 220, 220))
-                .with_checker(Rgb888::new(40, 40, 40), 1.0)
-                .with_material(Material::new(0.0, 32.0, 0.2)),
-        ],
+        LIGHTS,
+        [floor(0.2)],
         Rgb888::new(20, 30, 60),
         Settings {
             max_depth: 3,
@@ -389,9 +414,12 @@ fn lit_scene() -> Scene<3, 2, 1, 3> {
     )
 }
 
-#[test]
-fn undecidable_band_is_a_small_fraction_of_a_lit_scene() {
-    let scene = lit_scene();
+/// The undecidable pixels of a 120×90 reference of `scene`, printed by reason; returns
+/// the image.
+fn band_of<const N: usize, const L: usize, const P: usize, const D: usize>(
+    name: &str,
+    scene: &Scene<N, L, P, D>,
+) -> reference::ReferenceImage {
     let camera = Camera::new(
         v(0.5, 2.5, 7.5),
         v(0.0, -0.2, 0.0),
@@ -400,12 +428,12 @@ fn undecidable_band_is_a_small_fraction_of_a_lit_scene() {
         Size::new(120, 90),
     )
     .unwrap();
-    let img = reference::render(&scene, &camera);
-    let n = img.pixels.len();
+    let img = reference::render(scene, &camera);
     let count = |bit| img.undecidable_by(bit);
     println!(
-        "120×90 lit scene: undecidable {} of {n} ({:.3} %): silhouette {}, horizon {}, shadow {}, checker {}, gate {}, mirror {}",
+        "{name} 120×90: undecidable {} of {} ({:.2} %): silhouette {}, horizon {}, shadow {}, checker {}, gate {}, mirror {}",
         img.undecidable(),
+        img.pixels.len(),
         100.0 * img.undecidable_fraction(),
         count(why::SILHOUETTE),
         count(why::HORIZON),
@@ -414,20 +442,111 @@ fn undecidable_band_is_a_small_fraction_of_a_lit_scene() {
         count(why::GATE),
         count(why::MIRROR),
     );
-    assert!(
-        img.undecidable_fraction() < 0.03,
-        "{}",
-        img.undecidable_fraction()
-    );
-    // The picture has what it should: every object, and the floor both in shadow and lit.
-    for k in 0..4 {
-        assert!(img.count_hits(k) > 50, "object {k}: {}", img.count_hits(k));
+    img
+}
+
+#[test]
+fn undecidable_band_is_a_small_fraction_of_lit_scenes() {
+    let shadows = band_of("shadows", &shadows_scene());
+    let mirrors = band_of("mirrors", &mirrors_scene());
+    for img in [&shadows, &mirrors] {
+        assert!(
+            img.undecidable_fraction() < 0.03,
+            "{}",
+            img.undecidable_fraction()
+        );
+        // The picture has what it should: every object.
+        for k in 0..4 {
+            assert!(img.count_hits(k) > 50, "object {k}: {}", img.count_hits(k));
+        }
     }
-    let floor_levels: std::collections::BTreeSet<u8> = img
+    // Shadows fall on the floor: it shows the ambient-only levels of both cells
+    // (0.1 × 220 = 22 and 0.1 × 40 = 4) and fully lit ones.
+    let floor_reds: std::collections::BTreeSet<u8> = shadows
         .pixels
         .iter()
-        .filter(|p| p.hit == Some(3))
+        .filter(|p| p.hit == Some(3) && !p.undecidable)
         .map(|p| p.color.r())
         .collect();
-    assert!(floor_levels.len() > 20, "{floor_levels:?}");
+    assert!(
+        floor_reds.contains(&22) && floor_reds.contains(&4),
+        "{floor_reds:?}"
+    );
+    assert!(floor_reds.iter().any(|&r| r > 150), "{floor_reds:?}");
+    // The mirrors change what the spheres show.
+    let differ = shadows
+        .pixels
+        .iter()
+        .zip(&mirrors.pixels)
+        .filter(|(a, b)| a.color != b.color)
+        .count();
+    assert!(differ > 500, "{differ}");
+}
+
+#[test]
+fn gate_is_undecidable_only_at_the_terminator_with_a_highlight() {
+    // Unit sphere, light toward +x, eye on +z: the terminator is the circle x = 0. At
+    // p = (0, 0.6, 0.8), n·l = 0 and the open highlight max(0, n·h)^1 ≈ 0.5 would add
+    // ~127 levels: a correct f32 may take the gate either way. 0.01 inside, it may not.
+    let scene = |specular: f32| -> Scene<1, 1> {
+        Scene::from_arrays(
+            [Sphere::new(Vec3::ZERO, 1.0, Rgb888::new(200, 200, 200))
+                .with_material(Material::new(specular, 1.0, 0.0))],
+            [Light::directional(v(-1.0, 0.0, 0.0), 1.0)],
+            [],
+            Rgb888::BLACK,
+            Settings::DEFAULT,
+        )
+    };
+    let eye = [0.0, 0.0, 5.0];
+    let aim = |p: D3| {
+        let p = p.normalize().unwrap();
+        [p.x - eye[0], p.y - eye[1], p.z - eye[2]]
+    };
+    let on = aim(D3::new(0.0, 0.6, 0.8));
+    let lit_side = aim(D3::new(0.01, 0.6, 0.8));
+    let p = shoot(&scene(1.0), eye, on);
+    assert_eq!(p.hit, Some(0));
+    assert!(p.why & why::GATE != 0, "{p:?}");
+    assert_eq!(shoot(&scene(1.0), eye, lit_side).why, 0);
+    // Without a highlight the gate moves nothing: diffuse is continuous through it.
+    assert_eq!(shoot(&scene(0.0), eye, on).why & why::GATE, 0);
+}
+
+/// The flat mirror and floor of [`mirror_scene`] and a sphere of radius ½ that the
+/// reflected ray (from the origin along (0, −1, 1)/√2) grazes at distance 1, offset by
+/// `x` along +x.
+fn grazed_by_the_reflection(r: f32, x: f32) -> Scene<1, 0, 2, 1> {
+    let k = 0.5f32.sqrt();
+    Scene::from_arrays(
+        [Sphere::new(v(x, -k, k), 0.5, Rgb888::new(0, 0, 250))],
+        [],
+        [
+            Plane::new(Vec3::ZERO, v(0.0, 0.0, 1.0), Rgb888::BLACK)
+                .with_material(Material::new(0.0, 32.0, r)),
+            Plane::new(v(0.0, -1.0, 0.0), v(0.0, 1.0, 0.0), Rgb888::new(200, 100, 40)),
+        ],
+        Rgb888::new(100, 50, 20),
+        Settings {
+            max_depth: 1,
+            ..Settings::DEFAULT
+        },
+    )
+}
+
+#[test]
+fn reflected_silhouette_is_undecidable_by_its_weight() {
+    let ray = ([0.0, 1.0, 1.0], [0.0, -1.0, -1.0]);
+    let p = shoot(&grazed_by_the_reflection(0.5, 0.5), ray.0, ray.1);
+    assert_eq!(p.hit, Some(1), "{p:?}");
+    assert!(p.why & why::MIRROR != 0, "{p:?}");
+    // 1e-3 clear of the silhouette the reflection shows the floor, decidably.
+    let p = shoot(&grazed_by_the_reflection(0.5, 0.501), ray.0, ray.1);
+    assert_eq!(p.why, 0, "{p:?}");
+    let k = 0.5f64.sqrt();
+    let expect = [200.0, 100.0, 40.0].map(|c| level(0.5 * c * k));
+    assert_eq!(p.color, Rgb888::new(expect[0], expect[1], expect[2]));
+    // At a mirror weight of 0.002 the choice moves the colour by at most 0.51 levels.
+    let p = shoot(&grazed_by_the_reflection(0.002, 0.5), ray.0, ray.1);
+    assert_eq!(p.why & why::MIRROR, 0, "{p:?}");
 }

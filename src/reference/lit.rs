@@ -301,19 +301,23 @@ struct Cand {
     t: Option<f64>,
     tmin: f64,
     tmax: f64,
+    /// The largest parameter it may be hit at, given that it is hit.
+    hit_hi: f64,
 }
 
 const NONE: (f64, f64) = (f64::INFINITY, f64::INFINITY);
 
-/// Smallest and largest of the optional hit parameters (`None` counts as `∞`).
-fn span(ts: &[Option<f64>]) -> (f64, f64) {
+/// Smallest and largest of the optional hit parameters (`None` counts as `∞`), and the
+/// largest of those present.
+fn span(ts: &[Option<f64>]) -> (f64, f64, f64) {
     let lo = ts.iter().flatten().fold(f64::INFINITY, |a, &t| a.min(t));
+    let hit_hi = ts.iter().flatten().fold(0.0, |a: f64, &t| a.max(t));
     let hi = if ts.iter().all(Option::is_some) {
-        ts.iter().flatten().fold(0.0, |a: f64, &t| a.max(t))
+        hit_hi
     } else {
         f64::INFINITY
     };
-    (lo, hi)
+    (lo, hi, hit_hi)
 }
 
 fn sphere_cand(ray: &Ray, index: usize, s: &LitSphere, hit: Option<&RayHit>) -> Cand {
@@ -335,28 +339,30 @@ fn sphere_cand(ray: &Ray, index: usize, s: &LitSphere, hit: Option<&RayHit>) -> 
             t: (chord > 0.0).then(|| chord / ray.len),
             tmin: lo / ray.len,
             tmax: hi / ray.len,
+            hit_hi: (chord + err) / ray.len,
         };
     }
     let h = hit.copied().unwrap_or_else(|| intersect(ray.o, ray.d, c, r));
     let reach = h.t_closest.max(0.0) * ray.len + r;
     let delta = ray.e_o + reach * ray.e_dir + ROUND * (ray.o.length() + c.length() + r);
-    let (tmin, tmax) = if ((c - ray.o).length() - r).abs() <= delta {
+    let (tmin, tmax, hit_hi) = if ((c - ray.o).length() - r).abs() <= delta {
         // The origin may be on either side of the surface.
-        (0.0, f64::INFINITY)
+        (0.0, f64::INFINITY, f64::INFINITY)
     } else {
         let grown = intersect(ray.o, ray.d, c, r + delta).t;
         let shrunk = (r > delta)
             .then(|| intersect(ray.o, ray.d, c, r - delta).t)
             .flatten();
-        let (lo, hi) = span(&[h.t, grown, shrunk]);
+        let (lo, hi, hit_hi) = span(&[h.t, grown, shrunk]);
         let pad = delta / ray.len;
-        ((lo - pad).max(0.0), hi + pad)
+        ((lo - pad).max(0.0), hi + pad, hit_hi + pad)
     };
     Cand {
         index,
         t: h.t,
         tmin,
         tmax,
+        hit_hi,
     }
 }
 
@@ -366,6 +372,7 @@ fn plane_cand(ray: &Ray, index: usize, p: &LitPlane) -> Cand {
         t: None,
         tmin: f64::INFINITY,
         tmax: f64::INFINITY,
+        hit_hi: f64::INFINITY,
     };
     let Some((n, _, _)) = p.frame else {
         return miss;
@@ -395,7 +402,13 @@ fn plane_cand(ray: &Ray, index: usize, p: &LitPlane) -> Cand {
     } else {
         f64::INFINITY
     };
-    Cand { index, t, tmin, tmax }
+    Cand {
+        index,
+        t,
+        tmin,
+        tmax,
+        hit_hi: tmax,
+    }
 }
 
 /// Every object along `ray`, spheres first, then planes.
@@ -427,17 +440,41 @@ fn closest(cands: &[Cand]) -> Option<Cand> {
     best
 }
 
-/// Whether `f32` may show another object than `best`, counting only the pairs that
-/// `counts(best, other)` admits: `best`'s presence is in doubt, or another object's
-/// hit interval reaches below `best`'s.
-fn object_doubt(cands: &[Cand], best: Option<Cand>, counts: impl Fn(Option<usize>, usize) -> bool) -> bool {
+/// Whether `f32` may show another object than `best` (a reflected ray): `best`'s presence
+/// is in doubt, or another object's hit interval reaches below `best`'s.
+fn object_doubt(cands: &[Cand], best: Option<Cand>) -> bool {
     let bi = best.map(|b| b.index);
     let tmax = best.map_or(f64::INFINITY, |b| b.tmax);
-    let self_doubt = best.is_some_and(|b| b.tmax.is_infinite()) && cands.iter().any(|c| counts(bi, c.index));
-    self_doubt
+    best.is_some_and(|b| b.tmax.is_infinite())
         || cands
             .iter()
-            .any(|c| Some(c.index) != bi && counts(bi, c.index) && c.tmin.is_finite() && c.tmin <= tmax)
+            .any(|c| Some(c.index) != bi && c.tmin.is_finite() && c.tmin <= tmax)
+}
+
+/// Whether `f32` may show another object than `best` on a primary ray by a decision that
+/// involves a plane: the shown plane's presence (its horizon), or a plane and another
+/// object whose hit intervals overlap. A sphere's own silhouette is the reference band's
+/// ([`sphere_doubt`]): here a sphere counts only where it is hit, the shown one with
+/// its depth range given a hit.
+fn plane_doubt(cands: &[Cand], best: Option<Cand>, n_spheres: usize) -> bool {
+    let plane = |i: usize| i >= n_spheres;
+    let (bi, hi) = match best {
+        Some(b) if plane(b.index) => {
+            if b.tmax.is_infinite() {
+                return true;
+            }
+            (Some(b.index), b.tmax)
+        }
+        Some(b) => (Some(b.index), b.hit_hi),
+        None => (None, f64::INFINITY),
+    };
+    cands.iter().any(|c| {
+        Some(c.index) != bi
+            && (plane(c.index) || bi.is_some_and(plane))
+            && (plane(c.index) || c.t.is_some())
+            && c.tmin.is_finite()
+            && c.tmin <= hi
+    })
 }
 
 /// The surface seen at a hit, as shading needs it.
@@ -739,11 +776,10 @@ pub fn trace(camera: &RefCamera, scene: &LitScene, dir: D3) -> RefPixel {
                 why |= why::SILHOUETTE;
             }
             // Every decision that involves a plane: f32 rounding.
-            let plane = |i: usize| i >= n_spheres;
-            if object_doubt(&cands, best, |b, c| plane(c) || b.is_some_and(plane)) {
+            if plane_doubt(&cands, best, n_spheres) {
                 why |= why::HORIZON;
             }
-            for c in cands.iter().filter(|c| plane(c.index)) {
+            for c in cands.iter().filter(|c| c.index >= n_spheres) {
                 let Some(pl) = scene.planes.get(c.index - n_spheres) else {
                     continue;
                 };
@@ -760,7 +796,7 @@ pub fn trace(camera: &RefCamera, scene: &LitScene, dir: D3) -> RefPixel {
                     }
                 }
             }
-        } else if weight * 255.0 > LEVEL && object_doubt(&cands, best, |_, _| true) {
+        } else if weight * 255.0 > LEVEL && object_doubt(&cands, best) {
             why |= why::MIRROR;
         }
         let Some(sf) = best.and_then(|b| surface(scene, &ray, &b, camera.w)) else {

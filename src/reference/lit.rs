@@ -14,9 +14,9 @@
 //! take either way ([`RefPixel::why`]). The argument, with `u = 2⁻²⁴` (`f32`'s unit
 //! roundoff, [`UNIT_ROUNDOFF_F32`]):
 //!
-//! - **The ray's line.** A primary direction is within `DIR_ULPS·u·|d|` of the exact one
-//!   ([`DIR_ULPS`]: the default direct stepping's bound, two roundings of each of the
-//!   four terms of `F + dv·j + du·i`). Forming `c − o` (or `q − o`), the test's
+//! - **The ray's line.** A primary direction is within `DIR_ULPS·u·E` of the exact one,
+//!   `E` the image-plane extent ([`DIR_ULPS`], [`direction_error`]: the direct stepping's
+//!   four roundings of `F + dv·j + du·i`, each counted twice). Forming `c − o` (or `q − o`), the test's
 //!   discriminant and root, and `o + t·d` are each a handful of roundings of numbers no
 //!   larger than `S = |o| + s + |c| + r` (sphere) or `|o| + s + |q|` (plane), `s` the hit
 //!   distance: at most `POINT_ULPS·u·S` ([`POINT_ULPS`] = 16: eight roundings, doubled
@@ -70,10 +70,22 @@ use crate::scene::Scene;
 /// `f32`'s unit roundoff, `2⁻²⁴`.
 pub const UNIT_ROUNDOFF_F32: f64 = 1.0 / 16_777_216.0;
 
-/// A correct primary direction's relative error, in units of [`UNIT_ROUNDOFF_F32`]:
-/// direct stepping forms `F + dv·j + du·i` with two roundings per term of size up to the
-/// image-plane extent (eight in all, two units each).
+/// A correct primary direction's absolute error, in units of [`UNIT_ROUNDOFF_F32`] times
+/// the image-plane extent `E = |d(0, 0)| + H·ph + W·pw` (see [`direction_error`]):
+/// direct stepping forms `F + dv·j + du·i` in four roundings of numbers no larger than
+/// `E`, each counted twice.
 pub const DIR_ULPS: f64 = 16.0;
+
+/// The relative error of a correct `f32` primary direction `d`: `DIR_ULPS·u·E/|d|`, `E`
+/// the image-plane extent the direct stepping adds up (the first pixel's direction and
+/// the image's height and width in steps).
+#[must_use]
+pub fn direction_error(camera: &RefCamera, d: D3) -> f64 {
+    let extent = camera.direction(0, 0).length()
+        + f64::from(camera.height) * camera.pixel_height
+        + f64::from(camera.width) * camera.pixel_width;
+    DIR_ULPS * UNIT_ROUNDOFF_F32 * extent / d.length()
+}
 
 /// The constant of the hit point's error `POINT_ULPS·u·(|o| + s + size)`: eight
 /// roundings (forming `c − o`, the discriminant's terms, the root, `o + t·d`), doubled
@@ -85,7 +97,6 @@ pub const POINT_ULPS: f64 = 16.0;
 /// after rounding, inside the tables' tolerance).
 pub const LEVEL: f64 = 1.0;
 
-const DIR_ERR: f64 = DIR_ULPS * UNIT_ROUNDOFF_F32;
 const ROUND: f64 = POINT_ULPS * UNIT_ROUNDOFF_F32;
 
 /// A colour in `f64` channels, 0 … 255.
@@ -291,6 +302,10 @@ struct Ray {
     e_dir: f64,
     /// The object the ray leaves (its index), if any.
     from: Option<usize>,
+    /// A chord of sphere `k` from inside: `(k, δb)`, the error of the line's distance
+    /// from the centre (reflection inside a sphere keeps that distance, see
+    /// [`surface`]).
+    chord: Option<(usize, f64)>,
 }
 
 /// One object along a ray: its exact hit parameter, and the interval of parameters a
@@ -488,8 +503,14 @@ struct Surface {
     /// The other cell colour's largest channel difference, if the cell is in doubt.
     checker_doubt: Option<f64>,
     material: LitMaterial,
+    /// Absolute error of the point.
     e_p: f64,
+    /// Error of the unit normal (the gate's input).
     e_n: f64,
+    /// Direction error of the reflected ray.
+    e_dir_next: f64,
+    /// The reflected ray is a chord of this sphere from inside: `(index, δb)`.
+    chord: Option<(usize, f64)>,
 }
 
 fn surface(scene: &LitScene, ray: &Ray, hit: &Cand, w: D3) -> Option<Surface> {
@@ -497,14 +518,36 @@ fn surface(scene: &LitScene, ray: &Ray, hit: &Cand, w: D3) -> Option<Surface> {
     let p = ray.o + ray.d * t;
     let s = t * ray.len;
     let d_hat = ray.d * (1.0 / ray.len);
-    let line = |size: f64| ray.e_o + s * ray.e_dir + ROUND * (ray.o.length() + s + size);
     let n_spheres = scene.spheres.len();
     if let Some(sp) = scene.spheres.get(hit.index) {
         let (c, r) = (sp.center, sp.radius);
         let outward = (p - c) * (1.0 / r);
-        let e_line = line(c.length() + r);
         let cos = d_hat.dot(outward).abs();
-        let e_p = e_line + (e_line / cos).min((2.0 * r * e_line + e_line * e_line).sqrt());
+        let rounding = ROUND * (ray.o.length() + s + c.length() + r);
+        // Along the surface, a line offset `x` moves the point by x/|cos θ|, at most the
+        // sagitta.
+        let slide = |x: f64| (x / cos).min((2.0 * r * x + x * x).sqrt());
+        let (e_p, e_dir_next, chord) = match ray.chord {
+            Some((k, db)) if k == hit.index && ray.from == Some(k) => {
+                // A chord of this sphere from inside ends on it again. Reflection inside
+                // a sphere keeps the line's distance b from the centre and turns its
+                // direction by π − 2α (sin α = b/r): the line is known to δb across and
+                // its direction to the ray's error, which grows by 2δb/(r·cos α) per
+                // bounce (linearly, not compounding). The point is off by r·δψ from the
+                // turn plus the slide of δb.
+                let x = db + rounding;
+                let e_p = r * ray.e_dir + x + slide(x);
+                (e_p, ray.e_dir + 2.0 * slide(x) / r + 3.0 * ROUND, Some((k, x)))
+            }
+            _ => {
+                let e_line = ray.e_o + s * ray.e_dir + rounding;
+                let e_p = e_line + slide(e_line);
+                let e_n = (e_p + ROUND * (p.length() + c.length())) / r + ROUND;
+                // Seen from inside, the reflected ray is a chord of this sphere.
+                let chord = (outward.dot(ray.d) > 0.0).then_some((hit.index, e_line));
+                (e_p, ray.e_dir + 2.0 * e_n + ROUND, chord)
+            }
+        };
         let e_n = (e_p + ROUND * (p.length() + c.length())) / r + ROUND;
         // Lab #1's view-space normal, camera-relative: ((c − o)·w − t·(d·w))/r.
         let n_view = ((c - ray.o).dot(w) - t * ray.d.dot(w)) / r;
@@ -522,11 +565,13 @@ fn surface(scene: &LitScene, ray: &Ray, hit: &Cand, w: D3) -> Option<Surface> {
             material: sp.material,
             e_p,
             e_n,
+            e_dir_next,
+            chord,
         });
     }
     let pl = scene.planes.get(hit.index.checked_sub(n_spheres)?)?;
     let (n0, e1, e2) = pl.frame?;
-    let e_line = line(pl.point.length());
+    let e_line = ray.e_o + s * ray.e_dir + ROUND * (ray.o.length() + s + pl.point.length());
     let e_p = e_line + e_line / d_hat.dot(n0).abs();
     let n = if n0.dot(ray.d) > 0.0 {
         D3::default() - n0
@@ -560,6 +605,8 @@ fn surface(scene: &LitScene, ray: &Ray, hit: &Cand, w: D3) -> Option<Surface> {
         material: pl.material,
         e_p,
         e_n: ROUND,
+        e_dir_next: ray.e_dir + 3.0 * ROUND,
+        chord: None,
     })
 }
 
@@ -737,8 +784,9 @@ pub fn trace(camera: &RefCamera, scene: &LitScene, dir: D3) -> RefPixel {
         d: dir,
         len: dir.length(),
         e_o: 0.0,
-        e_dir: DIR_ERR,
+        e_dir: direction_error(camera, dir),
         from: None,
+        chord: None,
     };
     let mut why = 0u8;
     let mut margin = f64::INFINITY;
@@ -834,8 +882,9 @@ pub fn trace(camera: &RefCamera, scene: &LitScene, dir: D3) -> RefPixel {
             d: refl,
             len: refl.length(),
             e_o: sf.e_p,
-            e_dir: ray.e_dir + 2.0 * sf.e_n + ROUND,
+            e_dir: sf.e_dir_next,
             from: Some(from),
+            chord: sf.chord,
         };
         weight *= r;
         depth += 1;

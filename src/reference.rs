@@ -9,6 +9,15 @@
 //! `p(i,j) − eye = w + ((i + ½) − W/2)·pw·u + (H/2 − (j + ½))·ph·v`,
 //! intersects with Haines et al.'s robust test in `f64` and shades with Lab #1. A bug
 //! in the kernel's `Vec3`, sphere tests or shading therefore cannot hide in both.
+//! Scenes with lights, planes or mirrors are traced by [`lit`], written from the
+//! shading rules alone (Phong with hard shadows, checker floors, the mirror loop).
+//!
+//! Each reference pixel says whether a correct implementation may decide it either way
+//! ([`RefPixel::undecidable`], with the reasons in [`RefPixel::why`]): silhouettes and
+//! depth ties within the reference's own band, and — derived in [`lit`] — shadow
+//! boundaries, checker edges, the `n·l > 0` gate and mirror chains within `f32`
+//! rounding. [`compare`] counts those apart; [`Metrics::over_2`] counts the pixels
+//! more than 2 levels off outside them.
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Rgb888, prelude::*};

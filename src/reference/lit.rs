@@ -14,13 +14,14 @@
 //! take either way ([`RefPixel::why`]). The argument, with `u = 2⁻²⁴` (`f32`'s unit
 //! roundoff, [`UNIT_ROUNDOFF_F32`]):
 //!
-//! - **The ray's line.** A primary direction is within `DIR_ULPS·u·E` of the exact one,
-//!   `E` the image-plane extent ([`DIR_ULPS`], [`direction_error`]: the direct stepping's
-//!   four roundings of `F + dv·j + du·i`, each counted twice). Forming `c − o` (or `q − o`), the test's
-//!   discriminant and root, and `o + t·d` are each a handful of roundings of numbers no
-//!   larger than `S = |o| + s + |c| + r` (sphere) or `|o| + s + |q|` (plane), `s` the hit
-//!   distance: at most `POINT_ULPS·u·S` ([`POINT_ULPS`] = 16: eight roundings, doubled
-//!   for the step from components to Euclidean norms). So the ray is known to within
+//! - **The ray's line.** A primary direction is within `DIR_ULPS·u·E` of the exact
+//!   one, `E` the image-plane extent ([`DIR_ULPS`], [`direction_error`]: the direct
+//!   stepping's four roundings of `F + dv·j + du·i`, each counted twice). Forming
+//!   `c − o` (or `q − o`), the test's discriminant and root, and `o + t·d` are each a
+//!   handful of roundings of numbers no larger than `S = |o| + s + |c| + r` (sphere) or
+//!   `|o| + s + |q|` (plane), `s` the hit distance: at most `POINT_ULPS·u·S`
+//!   ([`POINT_ULPS`] = 16: eight roundings, doubled for the step from components to
+//!   Euclidean norms). So the ray is known to within
 //!   `e_line = e_o + s·e_dir + POINT_ULPS·u·S` across it, `e_o` the origin's own error
 //!   (0 for the eye).
 //! - **The hit point** slides along the surface by `e_line/|cos θ|` (`θ` between the
@@ -43,9 +44,16 @@
 //!   it, at the chord `s = 2·(c − p)·l̂`, known to `2·(e_p + POINT_ULPS·u·(|c| + |p|) +
 //!   r·e_l)`.
 //! - **A reflected ray** starts at `p` (error `e_p`) with direction error
-//!   `e_dir + 2·e_n + POINT_ULPS·u`. Which object it shows is undecidable when, for the
-//!   lines within that error, another object's hit distance interval reaches below the
-//!   shown one's (silhouettes, horizons, depth ties, a self-hit at a grazing chord).
+//!   `e_dir + 2·e_n + POINT_ULPS·u`. A chord inside a sphere that ends on the same
+//!   sphere uses what reflection inside a sphere keeps: the line's distance `b` from the
+//!   centre (its error `δb` gains only the new rounding per bounce) while the direction
+//!   turns by `π − 2α` (`sin α = b/r`), so the direction's error grows by
+//!   `2·δb/(r·cos α)` per bounce and the point's is `r·δψ` plus the slide of `δb`:
+//!   linear along the chain, where per-bounce worst cases would compound (with the eye
+//!   inside a mirror sphere at depth 8, they would mark most of the image). Which
+//!   object a reflected ray shows is undecidable when, for the lines within that error,
+//!   another object's hit distance interval reaches below the shown one's
+//!   (silhouettes, horizons, depth ties, a self-hit at a grazing chord).
 //!   Primary rays use the same rule for every decision that involves a plane; a primary
 //!   ray's sphere silhouettes and sphere–sphere ties keep the reference's own band
 //!   ([`BAND_ULPS`](super::BAND_ULPS)), as for Lab #1 scenes.

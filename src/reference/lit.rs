@@ -44,7 +44,9 @@
 //!   it, at the chord `s = 2·(c − p)·l̂`, known to `2·(e_p + POINT_ULPS·u·(|c| + |p|) +
 //!   r·e_l)`.
 //! - **A reflected ray** starts at `p` (error `e_p`) with direction error
-//!   `e_dir + 2·e_n + POINT_ULPS·u`. A chord inside a sphere that ends on the same
+//!   `e_dir + 2·e_n + POINT_ULPS·u`; its line passes `p` at the incoming line's offset
+//!   `e_line` (the slide along the surface lies in the plane of incidence at angle θ to
+//!   the normal, so it moves the reflected line across itself by `e_line` only). A chord inside a sphere that ends on the same
 //!   sphere uses what reflection inside a sphere keeps: the line's distance `b` from the
 //!   centre (its error `δb` gains only the new rounding per bounce) while the direction
 //!   turns by `π − 2α` (`sin α = b/r`), so the direction's error grows by
@@ -306,6 +308,10 @@ struct Ray {
     len: f64,
     /// Absolute error of the origin.
     e_o: f64,
+    /// Error of the line across itself at the origin (`≤ e_o`: a point that slid along
+    /// the surface it was found on moves the reflected line only by the incoming
+    /// line's offset).
+    e_off: f64,
     /// Relative (angular) error of the direction.
     e_dir: f64,
     /// The object the ray leaves (its index), if any.
@@ -367,8 +373,9 @@ fn sphere_cand(ray: &Ray, index: usize, s: &LitSphere, hit: Option<&RayHit>) -> 
     }
     let h = hit.copied().unwrap_or_else(|| intersect(ray.o, ray.d, c, r));
     let reach = h.t_closest.max(0.0) * ray.len + r;
-    let delta = ray.e_o + reach * ray.e_dir + ROUND * (ray.o.length() + c.length() + r);
-    let (tmin, tmax, hit_hi) = if ((c - ray.o).length() - r).abs() <= delta {
+    let rounding = ROUND * (ray.o.length() + c.length() + r);
+    let delta = ray.e_off + reach * ray.e_dir + rounding;
+    let (tmin, tmax, hit_hi) = if ((c - ray.o).length() - r).abs() <= ray.e_o + rounding {
         // The origin may be on either side of the surface.
         (0.0, f64::INFINITY, f64::INFINITY)
     } else {
@@ -517,6 +524,8 @@ struct Surface {
     e_n: f64,
     /// Direction error of the reflected ray.
     e_dir_next: f64,
+    /// Line offset error of the reflected ray at `p`.
+    e_off_next: f64,
     /// The reflected ray is a chord of this sphere from inside: `(index, δb)`.
     chord: Option<(usize, f64)>,
 }
@@ -535,7 +544,7 @@ fn surface(scene: &LitScene, ray: &Ray, hit: &Cand, w: D3) -> Option<Surface> {
         // Along the surface, a line offset `x` moves the point by x/|cos θ|, at most the
         // sagitta.
         let slide = |x: f64| (x / cos).min((2.0 * r * x + x * x).sqrt());
-        let (e_p, e_dir_next, chord) = match ray.chord {
+        let (e_p, e_dir_next, e_off_next, chord) = match ray.chord {
             Some((k, db)) if k == hit.index && ray.from == Some(k) => {
                 // A chord of this sphere from inside ends on it again. Reflection inside
                 // a sphere keeps the line's distance b from the centre and turns its
@@ -545,15 +554,17 @@ fn surface(scene: &LitScene, ray: &Ray, hit: &Cand, w: D3) -> Option<Surface> {
                 // turn plus the slide of δb.
                 let x = db + rounding;
                 let e_p = r * ray.e_dir + x + slide(x);
-                (e_p, ray.e_dir + 2.0 * slide(x) / r + 3.0 * ROUND, Some((k, x)))
+                let e_dir_next = ray.e_dir + 2.0 * slide(x) / r + 3.0 * ROUND;
+                (e_p, e_dir_next, x + r * ray.e_dir, Some((k, x)))
             }
             _ => {
-                let e_line = ray.e_o + s * ray.e_dir + rounding;
+                let e_line = ray.e_off + s * ray.e_dir + rounding;
                 let e_p = e_line + slide(e_line);
                 let e_n = (e_p + ROUND * (p.length() + c.length())) / r + ROUND;
                 // Seen from inside, the reflected ray is a chord of this sphere.
                 let chord = (outward.dot(ray.d) > 0.0).then_some((hit.index, e_line));
-                (e_p, ray.e_dir + 2.0 * e_n + ROUND, chord)
+                // The reflected line passes the slid point at the incoming line's offset.
+                (e_p, ray.e_dir + 2.0 * e_n + ROUND, e_line, chord)
             }
         };
         let e_n = (e_p + ROUND * (p.length() + c.length())) / r + ROUND;
@@ -574,12 +585,13 @@ fn surface(scene: &LitScene, ray: &Ray, hit: &Cand, w: D3) -> Option<Surface> {
             e_p,
             e_n,
             e_dir_next,
+            e_off_next,
             chord,
         });
     }
     let pl = scene.planes.get(hit.index.checked_sub(n_spheres)?)?;
     let (n0, e1, e2) = pl.frame?;
-    let e_line = ray.e_o + s * ray.e_dir + ROUND * (ray.o.length() + s + pl.point.length());
+    let e_line = ray.e_off + s * ray.e_dir + ROUND * (ray.o.length() + s + pl.point.length());
     let e_p = e_line + e_line / d_hat.dot(n0).abs();
     let n = if n0.dot(ray.d) > 0.0 {
         D3::default() - n0
@@ -614,6 +626,7 @@ fn surface(scene: &LitScene, ray: &Ray, hit: &Cand, w: D3) -> Option<Surface> {
         e_p,
         e_n: ROUND,
         e_dir_next: ray.e_dir + 3.0 * ROUND,
+        e_off_next: e_line,
         chord: None,
     })
 }
@@ -792,6 +805,7 @@ pub fn trace(camera: &RefCamera, scene: &LitScene, dir: D3) -> RefPixel {
         d: dir,
         len: dir.length(),
         e_o: 0.0,
+        e_off: 0.0,
         e_dir: direction_error(camera, dir),
         from: None,
         chord: None,
@@ -890,6 +904,7 @@ pub fn trace(camera: &RefCamera, scene: &LitScene, dir: D3) -> RefPixel {
             d: refl,
             len: refl.length(),
             e_o: sf.e_p,
+            e_off: sf.e_off_next,
             e_dir: sf.e_dir_next,
             from: Some(from),
             chord: sf.chord,

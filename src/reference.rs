@@ -506,7 +506,7 @@ pub fn render_params<const N: usize, const L: usize, const P: usize, const D: us
     params: &CameraParams,
 ) -> Option<ReferenceImage> {
     let camera = RefCamera::new(params)?;
-    let lit = lit::LitScene::of(scene);
+    let lit = lit::RefScene::of(scene);
     let mut pixels = Vec::with_capacity(camera.width as usize * camera.height as usize);
     if lit.is_lab1() {
         let spheres: Vec<RefSphere> = scene

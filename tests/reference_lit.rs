@@ -6,7 +6,7 @@
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
-use embedded_raytracer::reference::lit::{self, plane_basis, LitScene};
+use embedded_raytracer::reference::lit::{self, plane_basis, RefScene};
 use embedded_raytracer::reference::{self, why, RefCamera, RefPixel, D3};
 use embedded_raytracer::{Camera, Light, Material, Plane, Scene, Settings, Sphere, Vec3};
 
@@ -31,7 +31,7 @@ fn shoot<const N: usize, const L: usize, const P: usize, const D: usize>(
         width: 1,
         height: 1,
     };
-    lit::trace(&camera, &LitScene::of(scene), d)
+    lit::trace(&camera, &RefScene::of(scene), d)
 }
 
 /// Rounds like the reference: to nearest, halves up.
@@ -341,7 +341,7 @@ fn lab1_scenes_trace_the_same_through_the_lit_path() {
     )
     .unwrap();
     let img = reference::render(&scene, &camera);
-    let lit = LitScene::of(&scene);
+    let lit = RefScene::of(&scene);
     assert!(lit.is_lab1());
     let cam = img.camera;
     let mut hits = 0;

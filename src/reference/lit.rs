@@ -122,7 +122,7 @@ fn max_channel(c: Rgb) -> f64 {
 
 /// A surface's material in `f64`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LitMaterial {
+pub struct RefMaterial {
     /// Weight of the highlight.
     pub specular: f64,
     /// Phong exponent.
@@ -133,7 +133,7 @@ pub struct LitMaterial {
 
 /// A sphere as the lit reference sees it.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LitSphere {
+pub struct RefLitSphere {
     /// Centre.
     pub center: D3,
     /// Radius.
@@ -141,12 +141,12 @@ pub struct LitSphere {
     /// Colour.
     pub color: Rgb,
     /// Material.
-    pub material: LitMaterial,
+    pub material: RefMaterial,
 }
 
 /// A plane as the lit reference sees it.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LitPlane {
+pub struct RefPlane {
     /// A point on the plane.
     pub point: D3,
     /// Unit normal as given and its checker basis `(n, e₁, e₂)`; `None` for a zero
@@ -159,12 +159,12 @@ pub struct LitPlane {
     /// Cell side.
     pub size: f64,
     /// Material.
-    pub material: LitMaterial,
+    pub material: RefMaterial,
 }
 
 /// A light as the lit reference sees it.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum LitLight {
+pub enum RefLight {
     /// Parallel light: `toward` is the unit vector toward the light (`−direction`).
     Directional {
         /// Unit vector toward the light.
@@ -183,13 +183,13 @@ pub enum LitLight {
 
 /// A scene in `f64`: what the lit reference traces.
 #[derive(Clone, Debug, PartialEq)]
-pub struct LitScene {
+pub struct RefScene {
     /// Spheres (object indices `0 … spheres.len()`).
-    pub spheres: Vec<LitSphere>,
+    pub spheres: Vec<RefLitSphere>,
     /// Planes (object index `spheres.len() + k`).
-    pub planes: Vec<LitPlane>,
+    pub planes: Vec<RefPlane>,
     /// Lights (a directional light with a zero direction is left out).
-    pub lights: Vec<LitLight>,
+    pub lights: Vec<RefLight>,
     /// Ambient term.
     pub ambient: f64,
     /// Whether lights cast shadows.
@@ -220,15 +220,15 @@ pub fn plane_basis(n: D3) -> Option<(D3, D3)> {
     Some((e1, n.cross(e1)))
 }
 
-fn material(m: &crate::material::Material, mirrors: bool) -> LitMaterial {
-    LitMaterial {
+fn material(m: &crate::material::Material, mirrors: bool) -> RefMaterial {
+    RefMaterial {
         specular: f64::from(m.specular),
         shininess: f64::from(m.shininess),
         reflect: if mirrors { f64::from(m.reflect) } else { 0.0 },
     }
 }
 
-impl LitScene {
+impl RefScene {
     /// The scene's `f32` data in `f64`.
     #[must_use]
     pub fn of<const N: usize, const L: usize, const P: usize, const D: usize>(
@@ -238,7 +238,7 @@ impl LitScene {
         let spheres = scene
             .spheres()
             .iter()
-            .map(|s| LitSphere {
+            .map(|s| RefLitSphere {
                 center: D3::of(s.center),
                 radius: f64::from(s.radius),
                 color: rgb(s.color),
@@ -248,7 +248,7 @@ impl LitScene {
         let planes = scene
             .planes()
             .iter()
-            .map(|p| LitPlane {
+            .map(|p| RefPlane {
                 point: D3::of(p.point),
                 frame: D3::of(p.normal)
                     .normalize()
@@ -265,11 +265,11 @@ impl LitScene {
             .filter_map(|l| match *l {
                 Light::Directional { direction, intensity } => (D3::default() - D3::of(direction))
                     .normalize()
-                    .map(|toward| LitLight::Directional {
+                    .map(|toward| RefLight::Directional {
                         toward,
                         intensity: f64::from(intensity),
                     }),
-                Light::Point { position, intensity } => Some(LitLight::Point {
+                Light::Point { position, intensity } => Some(RefLight::Point {
                     position: D3::of(position),
                     intensity: f64::from(intensity),
                 }),
@@ -349,7 +349,7 @@ fn span(ts: &[Option<f64>]) -> (f64, f64, f64) {
     (lo, hi, hit_hi)
 }
 
-fn sphere_cand(ray: &Ray, index: usize, s: &LitSphere, hit: Option<&RayHit>) -> Cand {
+fn sphere_cand(ray: &Ray, index: usize, s: &RefLitSphere, hit: Option<&RayHit>) -> Cand {
     let (c, r) = (s.center, s.radius);
     let d_hat = ray.d * (1.0 / ray.len);
     if ray.from == Some(index) {
@@ -396,7 +396,7 @@ fn sphere_cand(ray: &Ray, index: usize, s: &LitSphere, hit: Option<&RayHit>) -> 
     }
 }
 
-fn plane_cand(ray: &Ray, index: usize, p: &LitPlane) -> Cand {
+fn plane_cand(ray: &Ray, index: usize, p: &RefPlane) -> Cand {
     let miss = Cand {
         index,
         t: None,
@@ -442,7 +442,7 @@ fn plane_cand(ray: &Ray, index: usize, p: &LitPlane) -> Cand {
 }
 
 /// Every object along `ray`, spheres first, then planes.
-fn candidates(scene: &LitScene, ray: &Ray, sphere_hits: &[RayHit]) -> Vec<Cand> {
+fn candidates(scene: &RefScene, ray: &Ray, sphere_hits: &[RayHit]) -> Vec<Cand> {
     let spheres = scene
         .spheres
         .iter()
@@ -517,7 +517,7 @@ struct Surface {
     color: Rgb,
     /// The other cell colour's largest channel difference, if the cell is in doubt.
     checker_doubt: Option<f64>,
-    material: LitMaterial,
+    material: RefMaterial,
     /// Absolute error of the point.
     e_p: f64,
     /// Error of the unit normal (the gate's input).
@@ -530,7 +530,7 @@ struct Surface {
     chord: Option<(usize, f64)>,
 }
 
-fn surface(scene: &LitScene, ray: &Ray, hit: &Cand, w: D3) -> Option<Surface> {
+fn surface(scene: &RefScene, ray: &Ray, hit: &Cand, w: D3) -> Option<Surface> {
     let t = hit.t?;
     let p = ray.o + ray.d * t;
     let s = t * ray.len;
@@ -656,7 +656,7 @@ fn crosses(p: D3, l: D3, dist: f64, c: D3, r: f64) -> bool {
 /// (the first certain occluder ends the test).
 #[allow(clippy::too_many_arguments)]
 fn shadow(
-    scene: &LitScene,
+    scene: &RefScene,
     from: usize,
     p: D3,
     l: D3,
@@ -722,14 +722,14 @@ fn shadow(
 
 /// The local colour under the scene's lights (Phong with hard shadows), and the
 /// decisions in doubt that can move it by more than [`LEVEL`] at weight `weight`.
-fn phong(scene: &LitScene, ray: &Ray, from: usize, sf: &Surface, weight: f64, why: &mut u8) -> Rgb {
+fn phong(scene: &RefScene, ray: &Ray, from: usize, sf: &Surface, weight: f64, why: &mut u8) -> Rgb {
     let v = D3::default() - ray.d * (1.0 / ray.len);
     let m = sf.material;
     let (mut diffuse, mut spec, mut diffuse_bound) = (0.0, 0.0, 0.0);
     for light in &scene.lights {
         let (l, dist, size, intensity) = match *light {
-            LitLight::Directional { toward, intensity } => (toward, f64::INFINITY, 0.0, intensity),
-            LitLight::Point { position, intensity } => {
+            RefLight::Directional { toward, intensity } => (toward, f64::INFINITY, 0.0, intensity),
+            RefLight::Point { position, intensity } => {
                 let to = position - sf.p;
                 let Some(l) = to.normalize() else {
                     continue;
@@ -798,7 +798,7 @@ fn lab1_local(sf: &Surface, weight: f64, why: &mut u8) -> Rgb {
 /// Traces the pixel whose camera ray is `dir` through a scene with lights, planes or
 /// mirrors: the reference pixel and why it is undecidable, if it is.
 #[must_use]
-pub fn trace(camera: &RefCamera, scene: &LitScene, dir: D3) -> RefPixel {
+pub fn trace(camera: &RefCamera, scene: &RefScene, dir: D3) -> RefPixel {
     let background = rgb(scene.background);
     let mut ray = Ray {
         o: camera.eye,

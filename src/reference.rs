@@ -9,6 +9,15 @@
 //! `p(i,j) − eye = w + ((i + ½) − W/2)·pw·u + (H/2 − (j + ½))·ph·v`,
 //! intersects with Haines et al.'s robust test in `f64` and shades with Lab #1. A bug
 //! in the kernel's `Vec3`, sphere tests or shading therefore cannot hide in both.
+//! Scenes with lights, planes or mirrors are traced by [`lit`], written from the
+//! shading rules alone (Phong with hard shadows, checker floors, the mirror loop).
+//!
+//! Each reference pixel says whether a correct implementation may decide it either way
+//! ([`RefPixel::undecidable`], with the reasons in [`RefPixel::why`]): silhouettes and
+//! depth ties within the reference's own band, and — derived in [`lit`] — shadow
+//! boundaries, checker edges, the `n·l > 0` gate and mirror chains within `f32`
+//! rounding. [`compare`] counts those apart; [`Metrics::over_2`] counts the pixels
+//! more than 2 levels off outside them.
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Rgb888, prelude::*};
@@ -35,6 +44,7 @@ use crate::render::{Render, Sample};
 use crate::scene::Scene;
 use crate::vec3::Vec3;
 
+pub mod lit;
 pub mod sweeps;
 
 /// Relative width of the reference's own rounding band, in units of `f64::EPSILON`.
@@ -299,6 +309,30 @@ pub struct RefPixel {
     /// A method whose ray directions are off by less than this (in radians) cannot
     /// change the pixel's object.
     pub margin: f64,
+    /// Why the pixel is undecidable: a set of [`why`] bits, `0` for a decidable pixel.
+    pub why: u8,
+}
+
+/// The reasons a pixel is undecidable, as bits of [`RefPixel::why`].
+pub mod why {
+    /// A primary ray's silhouette or sphere–sphere depth tie within the reference's own
+    /// rounding band ([`BAND_ULPS`](super::BAND_ULPS)).
+    pub const SILHOUETTE: u8 = 1;
+    /// A primary ray's decision involving a plane within `f32` rounding: its horizon,
+    /// or a depth tie between a plane and another object.
+    pub const HORIZON: u8 = 2;
+    /// A shadow ray's decision against an occluder within `f32` rounding, where the
+    /// light moves the colour by more than a level.
+    pub const SHADOW: u8 = 4;
+    /// A checker edge within `f32` rounding of the hit point.
+    pub const CHECKER: u8 = 8;
+    /// The `n·l > 0` gate within rounding of `0`, or `l + v` within rounding of `0`,
+    /// where the specular term moves the colour by more than a level.
+    pub const GATE: u8 = 16;
+    /// Which object a reflected ray shows is within `f32` rounding (its silhouette,
+    /// horizon, self-hit or a depth tie), at a mirror weight that can move the colour
+    /// by more than a level.
+    pub const MIRROR: u8 = 32;
 }
 
 /// The reference image of a scene: every pixel, row-major, and the camera.
@@ -327,6 +361,22 @@ impl ReferenceImage {
         self.pixels.iter().filter(|p| p.undecidable).count()
     }
 
+    /// Number of undecidable pixels with any of the [`why`] bits in `mask`.
+    #[must_use]
+    pub fn undecidable_by(&self, mask: u8) -> usize {
+        self.pixels.iter().filter(|p| p.why & mask != 0).count()
+    }
+
+    /// Undecidable pixels as a fraction of all pixels (0 for an empty image).
+    #[must_use]
+    pub fn undecidable_fraction(&self) -> f64 {
+        if self.pixels.is_empty() {
+            0.0
+        } else {
+            self.undecidable() as f64 / self.pixels.len() as f64
+        }
+    }
+
     /// Number of pixels that show sphere `index`.
     #[must_use]
     pub fn count_hits(&self, index: usize) -> usize {
@@ -345,14 +395,10 @@ pub struct RefSphere {
     pub color: Rgb888,
 }
 
-/// Traces one ray through `spheres` in `f64`: the reference pixel.
+/// The closest sphere hit of a ray from its per-sphere tests: `(index, t, t_err)`, the
+/// first index on exact ties (as the kernel's strict `t < t_max`).
 #[must_use]
-pub fn trace_ray(camera: &RefCamera, spheres: &[RefSphere], background: Rgb888, dir: D3) -> RefPixel {
-    let hits: Vec<RayHit> = spheres
-        .iter()
-        .map(|s| intersect(camera.eye, dir, s.center, s.radius))
-        .collect();
-    // Closest hit, first index on exact ties (as the kernel's strict `t < t_max`).
+pub fn closest_sphere(hits: &[RayHit]) -> Option<(usize, f64, f64)> {
     let mut best: Option<(usize, f64, f64)> = None;
     for (k, h) in hits.iter().enumerate() {
         if let Some(t) = h.t {
@@ -361,23 +407,47 @@ pub fn trace_ray(camera: &RefCamera, spheres: &[RefSphere], background: Rgb888, 
             }
         }
     }
+    best
+}
+
+/// Whether the reference can decide which sphere a ray shows, and by how much:
+/// `(undecidable, margin)` for the visible hit `front` (`(index, t, t_err)`; an index
+/// past the spheres for another object): a silhouette in front of it within the
+/// reference's rounding band ([`BAND_ULPS`]), or a sphere hit within the rounding of
+/// `t` of it (a depth tie). The margin is the smallest angular clearance from such a
+/// silhouette and relative depth gap to another sphere hit.
+#[must_use]
+pub fn sphere_doubt(hits: &[RayHit], front: Option<(usize, f64, f64)>) -> (bool, f64) {
     let mut undecidable = false;
     let mut margin = f64::INFINITY;
     for (k, h) in hits.iter().enumerate() {
         // A silhouette matters if it lies in front of the visible hit.
-        let in_front = best.is_none_or(|(bk, bt, _)| k == bk || h.t_closest < bt);
+        let in_front = front.is_none_or(|(bk, bt, _)| k == bk || h.t_closest < bt);
         if !h.behind && in_front {
             undecidable |= h.undecidable;
             margin = margin.min(h.clearance);
         }
         // Depth ties: another sphere hit at (almost) the same distance.
-        if let (Some((bk, bt, berr)), Some(t)) = (best, h.t) {
+        if let (Some((bk, bt, berr)), Some(t)) = (front, h.t) {
             if k != bk {
                 undecidable |= (t - bt).abs() <= berr + h.t_err;
                 margin = margin.min((t - bt).abs() / bt);
             }
         }
     }
+    (undecidable, margin)
+}
+
+/// Traces one ray through `spheres` in `f64` under Lab #1: the reference pixel.
+#[must_use]
+pub fn trace_ray(camera: &RefCamera, spheres: &[RefSphere], background: Rgb888, dir: D3) -> RefPixel {
+    let hits: Vec<RayHit> = spheres
+        .iter()
+        .map(|s| intersect(camera.eye, dir, s.center, s.radius))
+        .collect();
+    let best = closest_sphere(&hits);
+    let (undecidable, margin) = sphere_doubt(&hits, best);
+    let why = if undecidable { why::SILHOUETTE } else { 0 };
     let len = dir.length();
     match best.and_then(|(k, t, _)| spheres.get(k).map(|s| (k, t, s))) {
         Some((k, t, s)) => {
@@ -390,6 +460,7 @@ pub fn trace_ray(camera: &RefCamera, spheres: &[RefSphere], background: Rgb888, 
                 color: lab1(s.color, n_z),
                 undecidable,
                 margin,
+                why,
             }
         }
         None => RefPixel {
@@ -398,16 +469,21 @@ pub fn trace_ray(camera: &RefCamera, spheres: &[RefSphere], background: Rgb888, 
             color: background,
             undecidable,
             margin,
+            why,
         },
     }
 }
 
 /// Renders `scene` as `camera` sees it, in `f64`, every pixel direct.
 ///
-/// Uses only the camera's `f32` parameters ([`Camera::params`]) and the spheres'
-/// data, never the kernel's derived values.
+/// Uses only the camera's `f32` parameters ([`Camera::params`]) and the scene's data,
+/// never the kernel's derived values. A scene with lights, planes or mirrors is traced
+/// by [`lit`]; one with none of them by Lab #1 over the spheres, as always.
 #[must_use]
-pub fn render<const N: usize>(scene: &Scene<N>, camera: &Camera) -> ReferenceImage {
+pub fn render<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+) -> ReferenceImage {
     render_params(scene, camera.params()).unwrap_or_else(|| ReferenceImage {
         camera: RefCamera {
             eye: D3::default(),
@@ -425,26 +501,38 @@ pub fn render<const N: usize>(scene: &Scene<N>, camera: &Camera) -> ReferenceIma
 
 /// [`render`] from raw parameters; `None` when the `f64` basis is degenerate.
 #[must_use]
-pub fn render_params<const N: usize>(scene: &Scene<N>, params: &CameraParams) -> Option<ReferenceImage> {
+pub fn render_params<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    params: &CameraParams,
+) -> Option<ReferenceImage> {
     let camera = RefCamera::new(params)?;
-    let spheres: Vec<RefSphere> = scene
-        .spheres()
-        .iter()
-        .map(|s| RefSphere {
-            center: D3::of(s.center),
-            radius: f64::from(s.radius),
-            color: s.color,
-        })
-        .collect();
+    let lit = lit::RefScene::of(scene);
     let mut pixels = Vec::with_capacity(camera.width as usize * camera.height as usize);
-    for j in 0..camera.height {
-        for i in 0..camera.width {
-            pixels.push(trace_ray(
-                &camera,
-                &spheres,
-                scene.background(),
-                camera.direction(i, j),
-            ));
+    if lit.is_lab1() {
+        let spheres: Vec<RefSphere> = scene
+            .spheres()
+            .iter()
+            .map(|s| RefSphere {
+                center: D3::of(s.center),
+                radius: f64::from(s.radius),
+                color: s.color,
+            })
+            .collect();
+        for j in 0..camera.height {
+            for i in 0..camera.width {
+                pixels.push(trace_ray(
+                    &camera,
+                    &spheres,
+                    scene.background(),
+                    camera.direction(i, j),
+                ));
+            }
+        }
+    } else {
+        for j in 0..camera.height {
+            for i in 0..camera.width {
+                pixels.push(lit::trace(&camera, &lit, camera.direction(i, j)));
+            }
         }
     }
     Some(ReferenceImage { camera, pixels })
@@ -475,6 +563,13 @@ pub struct Metrics {
     /// reference's direct one, both scaled to unit `w`-component and compared along
     /// `u` (in pixel widths) and `v` (in pixel heights).
     pub drift_max: f64,
+    /// Decidable pixels (whatever they show) with some channel more than 2 levels off
+    /// the reference: the accuracy tables' error count.
+    pub over_2: usize,
+    /// Largest absolute channel difference (8-bit levels) over all decidable pixels.
+    pub color_max: u8,
+    /// Mean absolute channel difference over all decidable pixels (all three channels).
+    pub color_mean: f64,
     /// Samples with a NaN or infinite direction or hit distance.
     pub non_finite: usize,
     /// Samples outside the image or seen twice (each pixel must come exactly once).
@@ -513,10 +608,14 @@ pub fn drift(camera: &RefCamera, i: u32, j: u32, direction: Vec3) -> f64 {
 /// Compares a render with the reference, pixel by pixel, through [`Render::trace`]
 /// (the same monomorphised loop that draws).
 #[must_use]
-pub fn compare<const N: usize, C>(render: &Render<'_, N, C>, reference: &ReferenceImage) -> Metrics {
+pub fn compare<const N: usize, C, const L: usize, const P: usize, const D: usize>(
+    render: &Render<'_, N, C, L, P, D>,
+    reference: &ReferenceImage,
+) -> Metrics {
     let mut m = Metrics::default();
     let mut seen = std::vec![false; reference.pixels.len()];
     let mut shade_sum = 0u64;
+    let mut color_sum = 0u64;
     let cam = &reference.camera;
     render.trace(|s: Sample| {
         let (Ok(i), Ok(j)) = (u32::try_from(s.pixel.x), u32::try_from(s.pixel.y)) else {
@@ -544,6 +643,14 @@ pub fn compare<const N: usize, C>(render: &Render<'_, N, C>, reference: &Referen
             m.undecidable += 1;
             return;
         }
+        let ds = channel_diffs(s.color, r.color);
+        if ds.iter().any(|&d| d > 2) {
+            m.over_2 += 1;
+        }
+        for d in ds {
+            m.color_max = m.color_max.max(d);
+            color_sum += u64::from(d);
+        }
         let kernel_hit = s.hit.map(|h| h.index);
         if kernel_hit != r.hit {
             m.coverage_errors += 1;
@@ -552,9 +659,6 @@ pub fn compare<const N: usize, C>(render: &Render<'_, N, C>, reference: &Referen
         }
         if let Some(h) = s.hit {
             m.agreeing_hits += 1;
-            let diff = |a: u8, b: u8| a.abs_diff(b);
-            let (a, b) = (s.color, r.color);
-            let ds = [diff(a.r(), b.r()), diff(a.g(), b.g()), diff(a.b(), b.b())];
             for d in ds {
                 m.shade_max = m.shade_max.max(d);
                 shade_sum += u64::from(d);
@@ -568,7 +672,20 @@ pub fn compare<const N: usize, C>(render: &Render<'_, N, C>, reference: &Referen
     if m.agreeing_hits > 0 {
         m.shade_mean = shade_sum as f64 / (3 * m.agreeing_hits) as f64;
     }
+    let decidable = m.pixels.saturating_sub(m.undecidable);
+    if decidable > 0 {
+        m.color_mean = color_sum as f64 / (3 * decidable) as f64;
+    }
     m
+}
+
+/// Absolute differences of two colours per 8-bit channel.
+fn channel_diffs(a: Rgb888, b: Rgb888) -> [u8; 3] {
+    [
+        a.r().abs_diff(b.r()),
+        a.g().abs_diff(b.g()),
+        a.b().abs_diff(b.b()),
+    ]
 }
 
 #[cfg(test)]
@@ -741,5 +858,46 @@ mod tests {
         let m = compare(&Render::<1, Rgb888>::new(&scene, &cam), &render(&empty, &cam));
         assert_eq!(m.coverage_errors, truth.count_hits(0));
         assert!(m.worst_error_margin.is_infinite());
+    }
+
+    #[test]
+    fn colour_metrics_count_every_decidable_pixel() {
+        let sphere = crate::Sphere::new(Vec3::ZERO, 1.0, Rgb888::new(255, 64, 64));
+        let scene_on = |bg: Rgb888| {
+            let mut scene: Scene<1> = Scene::new(bg);
+            scene.push(sphere).unwrap();
+            scene
+        };
+        let scene = scene_on(Rgb888::new(10, 10, 10));
+        let cam = Camera::new(
+            Vec3::new(0.0, 0.0, 5.0),
+            Vec3::ZERO,
+            Vec3::new(0.0, 1.0, 0.0),
+            0.6,
+            Size::new(16, 12),
+        )
+        .unwrap();
+        let render_it = Render::<1, Rgb888>::new(&scene, &cam);
+        // Against its own reference: nothing more than 2 levels off.
+        let m = compare(&render_it, &render(&scene, &cam));
+        assert_eq!(m.over_2, 0);
+        assert!(m.color_max <= 1 && m.color_mean < 1.0, "{m:?}");
+        // A reference whose background is 3 levels redder: every decidable background
+        // pixel is over 2 (the sphere's are not), the largest error is 3.
+        let other = render(&scene_on(Rgb888::new(13, 10, 10)), &cam);
+        let background = other
+            .pixels
+            .iter()
+            .filter(|p| p.hit.is_none() && !p.undecidable)
+            .count();
+        assert!(background > 50, "{background}");
+        let m = compare(&render_it, &other);
+        assert_eq!(m.over_2, background);
+        assert_eq!(m.color_max, 3);
+        let decidable = (m.pixels - m.undecidable) as f64;
+        assert!(m.color_mean >= background as f64 / decidable, "{m:?}");
+        // Two levels are within tolerance.
+        let m = compare(&render_it, &render(&scene_on(Rgb888::new(12, 10, 10)), &cam));
+        assert_eq!((m.over_2, m.color_max), (0, 2));
     }
 }

@@ -42,10 +42,14 @@ pub fn fov_for_pixel(pixel: f64, height: u32) -> f32 {
 
 /// Renders `scene` through `camera` with `method` and compares it with the reference.
 #[must_use]
-pub fn measure<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method) -> Metrics {
+pub fn measure<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    method: Method,
+) -> Metrics {
     let truth = render(scene, camera);
     compare(
-        &Render::<N, Rgb888>::new(scene, camera).with_method(method),
+        &Render::<N, Rgb888, L, P, D>::new(scene, camera).with_method(method),
         &truth,
     )
 }

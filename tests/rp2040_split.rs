@@ -1,7 +1,7 @@
 //! The RP2040 firmware's two-core band split (`boards/rp2040/src/split.rs`, the same
 //! file the firmware compiles): the cores' alternate bands cover every row exactly once,
 //! and, traced by `Render::draw_band` and put on the wire in band order, they are the
-//! whole render's pixels bit for bit — at the firmware's 240×240 in 16-row bands, and
+//! whole render's pixels bit for bit — at the firmware's 240×240 in its bands, and
 //! at a smaller size with several band heights, on every standard scene with every
 //! method.
 
@@ -14,10 +14,9 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_raytracer::{Camera, CameraParams, Method, Render, Scene};
 
-/// The firmware's frame and band height (`examples/common/st7789_band.rs`: `WIDTH`,
-/// `HEIGHT`, `BAND_ROWS`, which `boards/rp2040/src/main.rs` uses).
+/// The firmware's panel (`examples/common/st7789_band.rs`: `WIDTH`, `HEIGHT`); its band
+/// height is `split::BAND_ROWS`.
 const FIRMWARE_SIZE: Size = Size::new(240, 240);
-const FIRMWARE_BAND_ROWS: u32 = 16;
 
 /// The frame as the display receives it: every core traces its bands
 /// (`split::core_bands`) into its own buffers, and the bands go out in index order.
@@ -129,7 +128,7 @@ fn firmware_bands_equal_the_whole_render_on_every_standard_scene_and_method() {
         for method in Method::ALL {
             let want = whole(&file.scene, &camera, method);
             let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(method);
-            let got = two_core_frame(&render, FIRMWARE_SIZE, FIRMWARE_BAND_ROWS);
+            let got = two_core_frame(&render, FIRMWARE_SIZE, split::BAND_ROWS);
             assert!(
                 got == want,
                 "{name} {method}: two-core bands differ from the whole render"
@@ -139,7 +138,7 @@ fn firmware_bands_equal_the_whole_render_on_every_standard_scene_and_method() {
         // tests/band_wire.rs).
         let want = whole(&file.scene, &camera, Method::default());
         let rgb565 = Render::<_, Rgb565>::new(&file.scene, &camera);
-        let got = two_core_frame(&rgb565, FIRMWARE_SIZE, FIRMWARE_BAND_ROWS);
+        let got = two_core_frame(&rgb565, FIRMWARE_SIZE, split::BAND_ROWS);
         let want565: Vec<Rgb565> = want.iter().map(|&c| c.into()).collect();
         assert!(
             got == want565,

@@ -1,6 +1,6 @@
 //! Raspberry Pi Pico (RP2040, two Cortex-M0+ cores at 133 MHz) driving a 240×240 ST7789
-//! over SPI1: both cores trace the lab scene, in alternate bands of 16 rows
-//! (`split.rs`: core 0 bands 0, 2, …, 14, core 1 bands 1, 3, …, 13), each core into its
+//! over SPI1: both cores trace the lab scene, in alternate bands of 20 rows
+//! (`split.rs`: core 0 bands 0, 2, …, 10, core 1 bands 1, 3, …, 11), each core into its
 //! own band buffer, and DMA sends the bands to the display in order. The camera orbits
 //! the lab scene's look-at point, 5° per frame, and the top-left corner shows the last
 //! frame's time and how long core 0 waited in it (the RP2040's 1 MHz timer).
@@ -14,17 +14,21 @@
 //! Builds in CI; not tested on hardware. Wiring (README, "Raspberry Pi Pico (RP2040), two
 //! cores"): SCK GP10, MOSI GP11, CS GP9, DC GP8, RST GP12, BL GP13.
 //!
-//! The hand-off, per frame:
+//! The hand-off, per frame (core 0 owns SPI1 and the DMA channel):
 //! 1. core 0 traces band 0 (with the last frame's figures over it), sets the address
 //!    window (CASET, RASET: the whole panel) and sends RAMWR, byte by byte with DC low
 //!    for the command bytes; then DC high, and band 0 goes out by DMA (channel 0 into
 //!    SPI1's TX FIFO, paced by its DREQ);
-//! 2. for k = 1 … 14: core 0 takes band k (its own: traces it into its buffer, which
-//!    came back when band k − 2 finished; core 1's: waits for core 1's word `k` on the
-//!    SIO FIFO and takes core 1's buffer from the mailbox), waits for band k − 1 to
-//!    finish, hands that buffer back to its core (core 1's: into the mailbox, then the
-//!    word `k − 1` on the FIFO) and starts band k;
-//! 3. core 0 waits for band 14 and for SPI1 to shift it out, and raises CS.
+//! 2. for k = 1 … 11:
+//!    - core 1's band k: core 0 waits for core 1's word `k` on the SIO FIFO, takes core
+//!      1's buffer from the mailbox, waits for band k − 1 (its own) to finish and starts
+//!      band k;
+//!    - core 0's band k: core 0 waits for band k − 1 (core 1's) to finish and hands
+//!      that buffer straight back (into the mailbox, then the word `k − 1` on the FIFO),
+//!      so that core 1 traces its next band while core 0 traces band k into its own
+//!      buffer (back since band k − 2 finished); then it starts band k;
+//! 3. core 0 waits for band 11 and for SPI1 to shift it out, raises CS, and hands
+//!    core 1's buffer back.
 //!
 //! Core 1, for each of its bands k: traces band k into its buffer, puts the buffer in the
 //! mailbox, writes `k` to the FIFO, and waits for the word `k` back (band k has gone out)
@@ -44,8 +48,8 @@ mod scenes;
 
 mod split;
 
-// `trace_band` and `BANDS` there are the STM32 example's fixed 16-row bands; here the
-// bands come from `split.rs`.
+// `trace_band`, `BANDS` and `BAND_PIXELS` there are the STM32 example's 16-row bands;
+// here the bands come from `split.rs`.
 #[allow(dead_code)]
 #[path = "../../../examples/common/st7789_band.rs"]
 mod st7789_band;
@@ -76,7 +80,8 @@ use rp2040_hal::{
     Timer, Watchdog,
 };
 
-use crate::st7789_band::{draw_label, WireRgb565, BAND_PIXELS, BAND_ROWS, HEIGHT, WIDTH};
+use crate::split::BAND_ROWS;
+use crate::st7789_band::{draw_label, WireRgb565, HEIGHT, WIDTH};
 
 /// The second-stage bootloader for the Pico's W25Q080 flash, at the start of flash
 /// (`memory.x`).
@@ -103,7 +108,12 @@ const SPI_HZ: u32 = 62_500_000;
 
 /// Bands per frame; every band is `BAND_ROWS` rows, one buffer's worth.
 const BANDS: u32 = split::band_count(HEIGHT, BAND_ROWS);
+const BAND_PIXELS: usize = (WIDTH * BAND_ROWS) as usize;
 const _: () = assert!(HEIGHT.is_multiple_of(BAND_ROWS), "every band fills a buffer");
+// Step 2 hands band k − 1 to the other core of two that alternate.
+const _: () = assert!(split::CORES == 2, "two cores, alternate bands");
+// `draw_label` draws into the first `st7789_band::BAND_ROWS` rows of band 0.
+const _: () = assert!(BAND_ROWS >= st7789_band::BAND_ROWS, "the label fits in band 0");
 
 /// The orbit's step per frame (5°).
 const STEP: f32 = 5.0 * (core::f32::consts::PI / 180.0);
@@ -365,50 +375,50 @@ fn main() -> ! {
         // Core 0's buffer while it is not on the wire.
         let mut free: Option<Band> = None;
 
-        // Step 2: band k taken, band k − 1 finished and handed back, band k started.
+        // Step 2: bands 1 … BANDS − 1, each started once the one before it is out.
         for k in 1..BANDS {
-            let band = if split::core_of(k) == 0 {
+            let wait_start = timer.get_counter().ticks();
+            transfer = if split::core_of(k) == 0 {
+                // Band k − 1 is core 1's: back to core 1 as soon as it is out, so that
+                // core 1 traces on while core 0 traces band k.
+                let (c, sent, s) = transfer.wait();
+                waited += timer.get_counter().ticks().wrapping_sub(wait_start);
+                put_mailbox(sent);
+                fifo.write_blocking(k - 1);
                 let Some(buf) = free.take() else {
                     panic!("core 0's buffer is still on the wire");
                 };
                 trace(camera.as_ref(), rows(k), &mut buf[..]);
-                buf
+                single_buffer::Config::new(c, buf, s).start()
             } else {
-                let wait_start = timer.get_counter().ticks();
+                // Band k is core 1's; band k − 1, core 0's, comes back to core 0.
                 expect_word(&mut fifo, k);
                 let buf = take_mailbox();
+                let (c, sent, s) = transfer.wait();
                 waited += timer.get_counter().ticks().wrapping_sub(wait_start);
-                buf
-            };
-            let wait_start = timer.get_counter().ticks();
-            let (c, sent, s) = transfer.wait();
-            waited += timer.get_counter().ticks().wrapping_sub(wait_start);
-            if split::core_of(k - 1) == 0 {
                 free = Some(sent);
-            } else {
-                put_mailbox(sent);
-                fifo.write_blocking(k - 1);
-            }
-            transfer = single_buffer::Config::new(c, band, s).start();
+                single_buffer::Config::new(c, buf, s).start()
+            };
         }
 
-        // Step 3: the last band out of the FIFO and off the wire, then CS up.
+        // Step 3: the last band out of the FIFO and off the wire, CS up, its buffer
+        // back to its core.
         let wait_start = timer.get_counter().ticks();
         let sent;
         (ch, sent, spi) = transfer.wait();
         let _ = spi.flush();
         let _ = cs.set_high();
         waited += timer.get_counter().ticks().wrapping_sub(wait_start);
-        if split::core_of(BANDS - 1) == 0 {
-            own = sent;
+        own = if split::core_of(BANDS - 1) == 0 {
+            sent
         } else {
             put_mailbox(sent);
             fifo.write_blocking(BANDS - 1);
-            own = match free.take() {
+            match free.take() {
                 Some(buf) => buf,
                 None => panic!("core 0's buffer is still on the wire"),
-            };
-        }
+            }
+        };
         angle = next_angle(angle);
     }
 }

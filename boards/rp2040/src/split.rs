@@ -13,6 +13,10 @@ use core::ops::Range;
 /// The cores that trace.
 pub const CORES: u32 = 2;
 
+/// The firmware's band height: 240 rows make 12 bands, six per core, so both cores
+/// trace as many rows per frame.
+pub const BAND_ROWS: u32 = 20;
+
 /// The core that traces band `band`: the bands alternate between the cores.
 pub const fn core_of(band: u32) -> u32 {
     band % CORES

@@ -65,6 +65,7 @@ fn at_size(params: &CameraParams, size: Size) -> Camera {
 #[test]
 fn the_cores_take_alternate_bands_that_cover_every_row_once() {
     for (height, band_rows) in [
+        (240, split::BAND_ROWS),
         (240, 16),
         (240, 7),
         (36, 5),

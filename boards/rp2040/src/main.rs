@@ -181,6 +181,7 @@ fn take_mailbox() -> Band {
     }
 }
 
+/// Core 1's buffer into the mailbox, before the signal on the FIFO.
 fn put_mailbox(band: Band) {
     critical_section::with(|cs| MAILBOX.borrow(cs).set(Some(band)));
 }

@@ -1,0 +1,425 @@
+//! Raspberry Pi Pico (RP2040, two Cortex-M0+ cores at 133 MHz) driving a 240×240 ST7789
+//! over SPI1: both cores trace the lab scene, in alternate bands of 20 rows
+//! (`split.rs`: core 0 bands 0, 2, …, 10, core 1 bands 1, 3, …, 11), each core into its
+//! own band buffer, and DMA sends the bands to the display in order. The camera orbits
+//! the lab scene's look-at point, 5° per frame, and the top-left corner shows the last
+//! frame's time and how long core 0 waited in it (the RP2040's 1 MHz timer).
+//!
+//! ```sh
+//! cd boards/rp2040 && cargo build --release
+//! elf2uf2-rs -d target/thumbv6m-none-eabi/release/rp2040-st7789    # Pico in BOOTSEL mode
+//! probe-rs run --chip RP2040 target/thumbv6m-none-eabi/release/rp2040-st7789   # or over SWD
+//! ```
+//!
+//! Builds in CI; not tested on hardware. Wiring (README, "Raspberry Pi Pico (RP2040), two
+//! cores"): SCK GP10, MOSI GP11, CS GP9, DC GP8, RST GP12, BL GP13.
+//!
+//! The hand-off, per frame (core 0 owns SPI1 and the DMA channel):
+//! 1. core 0 traces band 0 (with the last frame's figures over it), sets the address
+//!    window (CASET, RASET: the whole panel) and sends RAMWR, byte by byte with DC low
+//!    for the command bytes; then DC high, and band 0 goes out by DMA (channel 0 into
+//!    SPI1's TX FIFO, paced by its DREQ);
+//! 2. for k = 1 … 11:
+//!    - core 1's band k: core 0 waits for core 1's word `k` on the SIO FIFO, takes core
+//!      1's buffer from the mailbox, waits for band k − 1 (its own) to finish and starts
+//!      band k;
+//!    - core 0's band k: core 0 waits for band k − 1 (core 1's) to finish and hands
+//!      that buffer straight back (into the mailbox, then the word `k − 1` on the FIFO),
+//!      so that core 1 traces its next band while core 0 traces band k into its own
+//!      buffer (back since band k − 2 finished); then it starts band k;
+//! 3. core 0 waits for band 11 and for SPI1 to shift it out, raises CS, and hands
+//!    core 1's buffer back.
+//!
+//! Core 1, for each of its bands k: traces band k into its buffer, puts the buffer in the
+//! mailbox, writes `k` to the FIFO, and waits for the word `k` back (band k has gone out)
+//! before it takes the buffer back for its next band. So a band goes out only after the
+//! one before it, and a core reuses its buffer only once its transfer has finished.
+//! Both cores step the camera the same way (the same soft-float code on the same
+//! numbers), so they trace the same frame without exchanging cameras.
+//!
+//! The bands are traced straight into the ST7789's wire format
+//! (`examples/common/st7789_band.rs`: Rgb565, high byte first), as in
+//! `examples/stm32f407_st7789_dma.rs`.
+#![no_std]
+#![no_main]
+
+#[path = "../../../examples/common/scenes.rs"]
+mod scenes;
+
+mod split;
+
+// `trace_band`, `BANDS` and `BAND_PIXELS` there are the STM32 example's 16-row bands;
+// here the bands come from `split.rs`.
+#[allow(dead_code)]
+#[path = "../../../examples/common/st7789_band.rs"]
+mod st7789_band;
+
+use core::cell::Cell;
+use core::fmt::Write as _;
+use core::ops::Range;
+
+use critical_section::Mutex;
+use embedded_graphics::prelude::*;
+use embedded_hal::digital::OutputPin;
+use embedded_hal::spi::SpiBus;
+use embedded_hal_bus::spi::ExclusiveDevice;
+use embedded_raytracer::{Camera, Render, Vec3};
+use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
+use panic_halt as _;
+use rp2040_hal::{
+    self as hal,
+    clocks::{Clock, ClocksManager},
+    dma::{single_buffer, DMAExt},
+    fugit::{HertzU32, RateExtU32},
+    gpio::FunctionSpi,
+    multicore::{Multicore, Stack},
+    pac,
+    pll::{common_configs::PLL_USB_48MHZ, setup_pll_blocking, PLLConfig},
+    sio::{Sio, SioFifo},
+    xosc::setup_xosc_blocking,
+    Timer, Watchdog,
+};
+
+use crate::split::BAND_ROWS;
+use crate::st7789_band::{draw_label, WireRgb565, HEIGHT, WIDTH};
+
+/// The second-stage bootloader for the Pico's W25Q080 flash, at the start of flash
+/// (`memory.x`).
+#[link_section = ".boot2"]
+#[used]
+pub static BOOT2: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
+
+/// The Pico's crystal.
+const XTAL_HZ: u32 = 12_000_000;
+
+/// The system clock, 133 MHz: 12 MHz × 133 = 1596 MHz in the VCO (its limit is 1600),
+/// divided by 6 and by 2. The peripheral clock (SPI) is the system clock.
+const PLL_SYS_133MHZ: PLLConfig = PLLConfig {
+    vco_freq: HertzU32::MHz(1596),
+    refdiv: 1,
+    post_div1: 6,
+    post_div2: 2,
+};
+
+/// The SPI clock asked for: the ST7789's fastest serial write clock (16 ns cycle). The
+/// PL022 divides the 133 MHz peripheral clock by an even prescaler times (1 + SCR), so
+/// the fastest clock at or below it, which the HAL picks, is 133 / 4 = 33.25 MHz.
+const SPI_HZ: u32 = 62_500_000;
+
+/// Bands per frame; every band is `BAND_ROWS` rows, one buffer's worth.
+const BANDS: u32 = split::band_count(HEIGHT, BAND_ROWS);
+const BAND_PIXELS: usize = (WIDTH * BAND_ROWS) as usize;
+const _: () = assert!(HEIGHT.is_multiple_of(BAND_ROWS), "every band fills a buffer");
+// Step 2 hands band k − 1 to the other core of two that alternate.
+const _: () = assert!(split::CORES == 2, "two cores, alternate bands");
+// `draw_label` draws into the first `st7789_band::BAND_ROWS` rows of band 0.
+const _: () = assert!(BAND_ROWS >= st7789_band::BAND_ROWS, "the label fits in band 0");
+
+/// The orbit's step per frame (5°).
+const STEP: f32 = 5.0 * (core::f32::consts::PI / 180.0);
+
+/// ST7789 commands (datasheet, "System function command table 1").
+const CASET: u8 = 0x2A;
+const RASET: u8 = 0x2B;
+const RAMWR: u8 = 0x2C;
+
+/// A band buffer: `'static`, so DMA may own it while a transfer runs, and so it can
+/// move between the cores.
+type Band = &'static mut [WireRgb565; BAND_PIXELS];
+
+/// Core 1's band buffer while core 0 (or DMA) has it: put in by the core handing it
+/// over, before it signals on the SIO FIFO; taken by the other core after the signal.
+/// The critical section is the HAL's two-core one (hardware spin-lock 31).
+static MAILBOX: Mutex<Cell<Option<Band>>> = Mutex::new(Cell::new(None));
+
+/// Core 1's stack (16 KiB; a lab render needs under 2 KiB on the Cortex-M0).
+static CORE1_STACK: Stack<4096> = Stack::new();
+
+/// The band rows of band `k` of this firmware's frame.
+fn rows(k: u32) -> Range<u32> {
+    split::band_rows(k, HEIGHT, BAND_ROWS)
+}
+
+/// The camera of the frame at orbit angle `angle`: the lab camera's eye turned about
+/// +y around the look-at point. `None` if the kernel rejects it (then bands are black).
+fn camera_at(angle: f32) -> Option<Camera> {
+    let lab = scenes::LAB_CAMERA;
+    let offset = lab.eye - lab.look_at;
+    let (s, c) = (libm::sinf(angle), libm::cosf(angle));
+    let eye = lab.look_at + Vec3::new(c * offset.x + s * offset.z, offset.y, c * offset.z - s * offset.x);
+    Camera::new(eye, lab.look_at, lab.up, lab.fov_y, Size::new(WIDTH, HEIGHT)).ok()
+}
+
+/// The next frame's orbit angle; both cores step it with this function.
+fn next_angle(angle: f32) -> f32 {
+    (angle + STEP) % (2.0 * core::f32::consts::PI)
+}
+
+/// Traces `rows` of the lab scene seen by `camera` into `buf`. Without a camera or if
+/// the band is refused, the band is black: the frame still goes out whole, so the
+/// display's write pointer stays in step.
+fn trace(camera: Option<&Camera>, rows: Range<u32>, buf: &mut [WireRgb565]) {
+    let traced = camera.is_some_and(|camera| Render::new(&scenes::LAB, camera).draw_band(rows, buf).is_ok());
+    if !traced {
+        buf.fill(WireRgb565::BLACK);
+    }
+}
+
+/// Waits for the FIFO word `want` from the other core: the hand-off protocol keeps
+/// both cores at the same band, so any other word means it broke.
+fn expect_word(fifo: &mut SioFifo, want: u32) {
+    if fifo.read_blocking() != want {
+        panic!("the cores disagree on the band");
+    }
+}
+
+/// Core 1's buffer from the mailbox (the other core has just signalled it is there).
+fn take_mailbox() -> Band {
+    match critical_section::with(|cs| MAILBOX.borrow(cs).take()) {
+        Some(band) => band,
+        None => panic!("signalled without a buffer in the mailbox"),
+    }
+}
+
+/// Core 1's buffer into the mailbox, before the signal on the FIFO.
+fn put_mailbox(band: Band) {
+    critical_section::with(|cs| MAILBOX.borrow(cs).set(Some(band)));
+}
+
+/// Core 1: traces its bands (`split::core_bands(1, …)`), frame after frame, into its
+/// one buffer, handing each to core 0 and taking it back once it has gone out.
+fn core1(mut buf: Band) -> ! {
+    // SAFETY: core 1 uses only the SIO block, and of it only its FIFO ends: every core
+    // reads and writes its own ends at the same addresses; core 0's `Sio` never
+    // reaches core 1's.
+    let pac = unsafe { pac::Peripherals::steal() };
+    let mut fifo = Sio::new(pac.SIO).fifo;
+    let mut angle = 0.0f32;
+    loop {
+        let camera = camera_at(angle);
+        for (k, band_rows) in split::core_bands(1, HEIGHT, BAND_ROWS) {
+            trace(camera.as_ref(), band_rows, &mut buf[..]);
+            put_mailbox(buf);
+            fifo.write_blocking(k);
+            // Band k has gone out: the buffer is back.
+            expect_word(&mut fifo, k);
+            buf = take_mailbox();
+        }
+        angle = next_angle(angle);
+    }
+}
+
+/// Clocks: the crystal, PLL_SYS at 133 MHz (system and peripheral clocks), PLL_USB at
+/// 48 MHz, and the watchdog's 1 µs tick, which the timer counts.
+fn init_clocks(
+    xosc: pac::XOSC,
+    clocks: pac::CLOCKS,
+    pll_sys: pac::PLL_SYS,
+    pll_usb: pac::PLL_USB,
+    resets: &mut pac::RESETS,
+    watchdog: &mut Watchdog,
+) -> Option<ClocksManager> {
+    let xosc = setup_xosc_blocking(xosc, XTAL_HZ.Hz()).ok()?;
+    watchdog.enable_tick_generation((XTAL_HZ / 1_000_000) as u8);
+    let mut clocks = ClocksManager::new(clocks);
+    let pll_sys = setup_pll_blocking(
+        pll_sys,
+        xosc.operating_frequency(),
+        PLL_SYS_133MHZ,
+        &mut clocks,
+        resets,
+    )
+    .ok()?;
+    let pll_usb = setup_pll_blocking(
+        pll_usb,
+        xosc.operating_frequency(),
+        PLL_USB_48MHZ,
+        &mut clocks,
+        resets,
+    )
+    .ok()?;
+    clocks.init_default(&xosc, &pll_sys, &pll_usb).ok()?;
+    Some(clocks)
+}
+
+/// Writes `bytes` without DMA and waits until SPI1 has shifted them out, so that DC or
+/// CS may change.
+fn write_blocking(spi: &mut impl SpiBus<u8>, bytes: &[u8]) {
+    let _ = spi.write(bytes);
+    let _ = spi.flush();
+}
+
+/// Step 1's commands: the address window (the whole panel) and RAMWR; leaves DC high,
+/// ready for the pixels.
+fn start_frame(spi: &mut impl SpiBus<u8>, dc: &mut impl OutputPin) {
+    let [x1_hi, x1_lo] = ((WIDTH - 1) as u16).to_be_bytes();
+    let [y1_hi, y1_lo] = ((HEIGHT - 1) as u16).to_be_bytes();
+    for (command, params) in [(CASET, [0, 0, x1_hi, x1_lo]), (RASET, [0, 0, y1_hi, y1_lo])] {
+        let _ = dc.set_low();
+        write_blocking(spi, &[command]);
+        let _ = dc.set_high();
+        write_blocking(spi, &params);
+    }
+    let _ = dc.set_low();
+    write_blocking(spi, &[RAMWR]);
+    let _ = dc.set_high();
+}
+
+/// Microseconds as milliseconds with one decimal, for the label.
+fn tenths_of_ms(us: u64) -> (u64, u64) {
+    (us / 1000, us / 100 % 10)
+}
+
+#[hal::entry]
+fn main() -> ! {
+    let Some(mut pac) = pac::Peripherals::take() else {
+        panic!("peripherals taken twice");
+    };
+    let mut watchdog = Watchdog::new(pac.WATCHDOG);
+    let Some(clocks) = init_clocks(
+        pac.XOSC,
+        pac.CLOCKS,
+        pac.PLL_SYS,
+        pac.PLL_USB,
+        &mut pac.RESETS,
+        &mut watchdog,
+    ) else {
+        panic!("clock setup failed");
+    };
+    let mut timer = Timer::new(pac.TIMER, &mut pac.RESETS, &clocks);
+
+    let mut sio = Sio::new(pac.SIO);
+    let pins = hal::gpio::Pins::new(pac.IO_BANK0, pac.PADS_BANK0, sio.gpio_bank0, &mut pac.RESETS);
+    // SPI1 on GP10 (SCK) and GP11 (TX = MOSI), mode 3 as in the STM32 examples (modules
+    // without CS work in mode 3).
+    let sck = pins.gpio10.into_function::<FunctionSpi>();
+    let mosi = pins.gpio11.into_function::<FunctionSpi>();
+    let mut spi = hal::spi::Spi::<_, _, _, 8>::new(pac.SPI1, (mosi, sck)).init(
+        &mut pac.RESETS,
+        clocks.peripheral_clock.freq(),
+        SPI_HZ.Hz(),
+        embedded_hal::spi::MODE_3,
+    );
+    let mut cs = pins
+        .gpio9
+        .into_push_pull_output_in_state(hal::gpio::PinState::High);
+    let mut dc = pins.gpio8.into_push_pull_output();
+    let mut rst = pins.gpio12.into_push_pull_output();
+    let _backlight = pins
+        .gpio13
+        .into_push_pull_output_in_state(hal::gpio::PinState::High);
+
+    // The controller's reset and init sequence through mipidsi, as in the STM32
+    // examples; the driver only borrows the bus and the pins and is dropped afterwards,
+    // so the frames below can drive SPI1 themselves.
+    {
+        let Ok(spi_device) = ExclusiveDevice::new_no_delay(&mut spi, &mut cs);
+        let mut buffer = [0u8; 16];
+        let interface = SpiInterface::new(spi_device, &mut dc, &mut buffer);
+        if Builder::new(ST7789, interface)
+            .display_size(WIDTH as u16, HEIGHT as u16)
+            .invert_colors(ColorInversion::Inverted) // IPS ST7789 panels are inverted
+            .reset_pin(&mut rst)
+            .init(&mut timer)
+            .is_err()
+        {
+            panic!("display init failed");
+        }
+    }
+
+    let (Some(mut own), Some(core1_buf)) = (
+        cortex_m::singleton!(: [WireRgb565; BAND_PIXELS] = [WireRgb565::BLACK; BAND_PIXELS]),
+        cortex_m::singleton!(: [WireRgb565; BAND_PIXELS] = [WireRgb565::BLACK; BAND_PIXELS]),
+    ) else {
+        panic!("band buffers taken twice");
+    };
+
+    // Core 1 starts tracing its first band now, while core 0 traces band 0.
+    {
+        let mut mc = Multicore::new(&mut pac.PSM, &mut pac.PPB, &mut sio.fifo);
+        let core1_stack = CORE1_STACK.take();
+        let spawned = core1_stack.map(|stack| mc.cores()[1].spawn(stack, move || core1(core1_buf)));
+        if !matches!(spawned, Some(Ok(()))) {
+            panic!("core 1 did not start");
+        }
+    }
+    let mut fifo = sio.fifo;
+
+    let mut ch = pac.DMA.split(&mut pac.RESETS).ch0;
+    let mut angle = 0.0f32;
+    // The timer at the last frame's start, and how long core 0 has waited since then
+    // (for core 1's bands and for the wire), in µs.
+    let mut last_start: Option<u64> = None;
+    let mut waited = 0u64;
+    loop {
+        let start = timer.get_counter().ticks();
+        let shown = last_start.map(|last| (start.wrapping_sub(last), waited));
+        last_start = Some(start);
+        waited = 0;
+        let camera = camera_at(angle);
+
+        // Step 1: band 0 with the last frame's figures, the address window, band 0 out.
+        trace(camera.as_ref(), rows(0), &mut own[..]);
+        if let Some((frame, wait)) = shown {
+            let (frame_ms, frame_tenth) = tenths_of_ms(frame);
+            let (wait_ms, wait_tenth) = tenths_of_ms(wait);
+            let mut label = heapless::String::<40>::new();
+            let _ = write!(
+                label,
+                "frame {frame_ms}.{frame_tenth} ms wait {wait_ms}.{wait_tenth}"
+            );
+            draw_label(&mut own[..], &label);
+        }
+        let _ = cs.set_low();
+        start_frame(&mut spi, &mut dc);
+        let mut transfer = single_buffer::Config::new(ch, own, spi).start();
+        // Core 0's buffer while it is not on the wire.
+        let mut free: Option<Band> = None;
+
+        // Step 2: bands 1 … BANDS − 1, each started once the one before it is out.
+        for k in 1..BANDS {
+            let wait_start = timer.get_counter().ticks();
+            transfer = if split::core_of(k) == 0 {
+                // Band k − 1 is core 1's: back to core 1 as soon as it is out, so that
+                // core 1 traces on while core 0 traces band k.
+                let (c, sent, s) = transfer.wait();
+                waited += timer.get_counter().ticks().wrapping_sub(wait_start);
+                put_mailbox(sent);
+                fifo.write_blocking(k - 1);
+                let Some(buf) = free.take() else {
+                    panic!("core 0's buffer is still on the wire");
+                };
+                trace(camera.as_ref(), rows(k), &mut buf[..]);
+                single_buffer::Config::new(c, buf, s).start()
+            } else {
+                // Band k is core 1's; band k − 1, core 0's, comes back to core 0.
+                expect_word(&mut fifo, k);
+                let buf = take_mailbox();
+                let (c, sent, s) = transfer.wait();
+                waited += timer.get_counter().ticks().wrapping_sub(wait_start);
+                free = Some(sent);
+                single_buffer::Config::new(c, buf, s).start()
+            };
+        }
+
+        // Step 3: the last band out of the FIFO and off the wire, CS up, its buffer
+        // back to its core.
+        let wait_start = timer.get_counter().ticks();
+        let sent;
+        (ch, sent, spi) = transfer.wait();
+        let _ = spi.flush();
+        let _ = cs.set_high();
+        waited += timer.get_counter().ticks().wrapping_sub(wait_start);
+        own = if split::core_of(BANDS - 1) == 0 {
+            sent
+        } else {
+            put_mailbox(sent);
+            fifo.write_blocking(BANDS - 1);
+            match free.take() {
+                Some(buf) => buf,
+                None => panic!("core 0's buffer is still on the wire"),
+            }
+        };
+        angle = next_angle(angle);
+    }
+}

@@ -1,0 +1,168 @@
+//! The RP2040 firmware's two-core band split (`boards/rp2040/src/split.rs`, the same
+//! file the firmware compiles): the cores' alternate bands cover every row exactly once,
+//! and, traced by `Render::draw_band` and put on the wire in band order, they are the
+//! whole render's pixels bit for bit — at the firmware's 240×240 in its bands, and
+//! at a smaller size with several band heights, on every standard scene with every
+//! method.
+
+mod common;
+
+#[path = "../boards/rp2040/src/split.rs"]
+mod split;
+
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics::prelude::*;
+use embedded_raytracer::{Camera, CameraParams, Method, Render, Scene};
+
+/// The firmware's panel (`examples/common/st7789_band.rs`: `WIDTH`, `HEIGHT`); its band
+/// height is `split::BAND_ROWS`.
+const FIRMWARE_SIZE: Size = Size::new(240, 240);
+
+/// The frame as the display receives it: every core traces its bands
+/// (`split::core_bands`) into its own buffers, and the bands go out in index order.
+fn two_core_frame<const N: usize, C: PixelColor + From<Rgb888>>(
+    render: &Render<'_, N, C>,
+    size: Size,
+    band_rows: u32,
+) -> Vec<C> {
+    let bands = split::band_count(size.height, band_rows);
+    let mut sent: Vec<Option<Vec<C>>> = vec![None; bands as usize];
+    for core in 0..split::CORES {
+        for (k, rows) in split::core_bands(core, size.height, band_rows) {
+            let mut buf = vec![C::from(Rgb888::new(1, 2, 3)); (size.width * rows.len() as u32) as usize];
+            render.draw_band(rows, &mut buf).unwrap();
+            let slot = &mut sent[k as usize];
+            assert!(slot.is_none(), "band {k} traced twice");
+            *slot = Some(buf);
+        }
+    }
+    sent.into_iter()
+        .enumerate()
+        .flat_map(|(k, band)| band.unwrap_or_else(|| panic!("band {k} traced by no core")))
+        .collect()
+}
+
+/// The whole render, drawn as one `Drawable` into a frame buffer, row-major.
+fn whole<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method) -> Vec<Rgb888> {
+    let mut frame = common::Frame::new(camera.size());
+    Render::new(scene, camera)
+        .with_method(method)
+        .draw(&mut frame)
+        .unwrap();
+    frame
+        .buf
+        .into_iter()
+        .map(|p| p.expect("every pixel drawn"))
+        .collect()
+}
+
+/// `params` at `size`: the scene's own camera, size replaced (as the firmware
+/// measurements do).
+fn at_size(params: &CameraParams, size: Size) -> Camera {
+    CameraParams { size, ..*params }.build().unwrap()
+}
+
+#[test]
+fn the_cores_take_alternate_bands_that_cover_every_row_once() {
+    for (height, band_rows) in [
+        (240, split::BAND_ROWS),
+        (240, 16),
+        (240, 7),
+        (36, 5),
+        (7, 3),
+        (1, 1),
+        (5, 9),
+        (6, 2),
+        (10, 0),
+    ] {
+        let bands = split::band_count(height, band_rows);
+        let mut next_row = 0;
+        let mut seen = 0;
+        let per_core: Vec<Vec<_>> = (0..split::CORES)
+            .map(|core| split::core_bands(core, height, band_rows).collect())
+            .collect();
+        for k in 0..bands {
+            let core = split::core_of(k);
+            assert_eq!(core, k % 2, "band {k}: alternate cores, core 0 first");
+            let (band, rows) = per_core[core as usize]
+                .iter()
+                .find(|(band, _)| *band == k)
+                .cloned()
+                .unwrap_or_else(|| panic!("{height}/{band_rows}: band {k} not in core {core}'s list"));
+            assert_eq!(band, k);
+            assert_eq!(rows, split::band_rows(k, height, band_rows));
+            assert_eq!(
+                rows.start,
+                next_row,
+                "{height}/{band_rows}: band {k} starts where {} ended",
+                k.max(1) - 1
+            );
+            assert!(!rows.is_empty() && rows.len() as u32 <= band_rows.max(1));
+            next_row = rows.end;
+            seen += 1;
+        }
+        assert_eq!(
+            next_row, height,
+            "{height}/{band_rows}: the bands end at the last row"
+        );
+        // Every core's list: its own bands only, in increasing order.
+        let listed: usize = per_core.iter().map(Vec::len).sum();
+        assert_eq!(
+            listed, seen,
+            "{height}/{band_rows}: no band listed twice or out of range"
+        );
+        for (core, list) in per_core.iter().enumerate() {
+            assert!(
+                list.windows(2).all(|w| w[0].0 < w[1].0),
+                "core {core}: in band order"
+            );
+            assert!(list.iter().all(|(k, _)| split::core_of(*k) == core as u32));
+        }
+    }
+}
+
+#[test]
+fn firmware_bands_equal_the_whole_render_on_every_standard_scene_and_method() {
+    for name in common::SCENES {
+        let file = common::load(name);
+        let camera = at_size(file.camera.params(), FIRMWARE_SIZE);
+        for method in Method::ALL {
+            let want = whole(&file.scene, &camera, method);
+            let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(method);
+            let got = two_core_frame(&render, FIRMWARE_SIZE, split::BAND_ROWS);
+            assert!(
+                got == want,
+                "{name} {method}: two-core bands differ from the whole render"
+            );
+        }
+        // The firmware's method and pixel format: Rgb565 (sent high byte first:
+        // tests/band_wire.rs).
+        let want = whole(&file.scene, &camera, Method::default());
+        let rgb565 = Render::<_, Rgb565>::new(&file.scene, &camera);
+        let got = two_core_frame(&rgb565, FIRMWARE_SIZE, split::BAND_ROWS);
+        let want565: Vec<Rgb565> = want.iter().map(|&c| c.into()).collect();
+        assert!(
+            got == want565,
+            "{name}: two-core Rgb565 bands differ from the whole render"
+        );
+    }
+}
+
+#[test]
+fn every_method_every_scene_every_band_height_equals_the_whole_render() {
+    let size = Size::new(40, 30);
+    for name in common::SCENES {
+        let file = common::load(name);
+        let camera = at_size(file.camera.params(), size);
+        for method in Method::ALL {
+            let want = whole(&file.scene, &camera, method);
+            let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(method);
+            // Bands that divide the height or not, an odd or even count of them, one
+            // band per row, one band for the whole frame.
+            for band_rows in [1, 4, 5, 7, 16, 30] {
+                let got = two_core_frame(&render, size, band_rows);
+                assert!(got == want, "{name} {method}: two-core bands of {band_rows} rows");
+            }
+        }
+    }
+}

@@ -1,7 +1,8 @@
 //! # embedded-raytracer
 //!
-//! A `no_std`, allocation-free ray-tracing kernel: spheres seen by a pin-hole camera,
-//! streamed scanline by scanline into any embedded-graphics
+//! A `no_std`, allocation-free ray-tracing kernel: spheres — and, where the scene's
+//! type asks for them, lights with hard shadows, checkered planes and mirrors — seen by
+//! a pin-hole camera, streamed scanline by scanline into any embedded-graphics
 //! [`DrawTarget`](embedded_graphics::draw_target::DrawTarget) — an SPI LCD driver, the
 //! desktop simulator, a test's `MockDisplay`.
 //!
@@ -57,7 +58,11 @@
 //!    whose rays can hit it.
 //! 5. **Per-row tests** (`scanline.rs`): per pixel, the ray's direction from the
 //!    stepping, the closest hit among the spheres whose span holds the column.
-//! 6. **Shade** ([`shade`]): the hit's colour (the seed's Lab #1).
+//! 6. **Shade** ([`shade`]): the hit's colour (the seed's Lab #1). A scene type with
+//!    lights, planes or a reflection depth (`Scene<N, L, P, D>`, see [`Scene`]) takes
+//!    the scene-features path instead (`lit.rs`): the planes' hits, Phong shading with a
+//!    shadow ray per light, and the reflection loop; secondary rays start as
+//!    [`SecondaryOrigin`] says (no epsilon by default).
 //! 7. **Sink** (`sink.rs`): each row, as an iterator, into the target's
 //!    `fill_contiguous` (or to a callback for [`Render::trace`]); [`dither`] and
 //!    [`hash`] are targets that adapt or summarise the stream.

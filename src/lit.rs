@@ -23,6 +23,8 @@
 //! textbook [`SecondaryOrigin::Epsilon`] starts the ray at `s = ε` and tests every
 //! object: it is kept to show where it fails (`tests/lit_stability.rs`).
 
+use core::cell::Cell;
+
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
@@ -235,6 +237,10 @@ struct LitFrame<'a, T: TestStrategy, const N: usize, const L: usize> {
     /// Per light and sphere: where on the image the sphere's shadow on the first plane
     /// can be (see [`shadow_silhouette`]).
     shadow: &'a [[Silhouette; N]; L],
+    /// The current row's cut of those silhouettes, `(lo, len)`: one buffer for the
+    /// frame, rewritten per row (a per-row array of `N × L` spans would be zeroed and
+    /// moved for every row).
+    shadow_rows: &'a [[Cell<(u32, u32)>; N]; L],
     planes: &'a [FramePlane],
     lights: &'a [FrameLight],
     camera: &'a Camera,
@@ -370,9 +376,12 @@ fn render_with<
             }
         }
     }
+    let shadow_rows: [[Cell<(u32, u32)>; N]; L] =
+        core::array::from_fn(|_| core::array::from_fn(|_| Cell::new((0, 0))));
     let lit = LitFrame {
         spheres: frame.spheres,
         shadow: &shadow,
+        shadow_rows: &shadow_rows,
         planes: &planes,
         lights: &lights,
         camera,
@@ -401,9 +410,6 @@ struct LitRow<'f, 's, T: TestStrategy, Q, O, const N: usize, const L: usize, con
     f: &'f LitFrame<'s, T, N, L>,
     /// Per plane: columns `[lo, lo + len)` whose rays can hit it.
     spans: [(u32, u32); P],
-    /// Per light and sphere: columns `[lo, lo + len)` of this row where the sphere's
-    /// shadow on the first plane can be.
-    shadow: [[(u32, u32); N]; L],
     occluder: [Object; L],
     marker: core::marker::PhantomData<(Q, O)>,
 }
@@ -435,20 +441,21 @@ impl<
                 *hi_all = (*hi_all).max(hi);
             }
         }
-        let mut shadow = [[(0, 0); N]; L];
-        if spans.first().is_some_and(|&(_, len)| len > 0) {
-            for (row, sils) in shadow.iter_mut().zip(f.shadow).take(f.lights.len()) {
-                for (span, sil) in row.iter_mut().zip(sils).take(f.spheres.len()) {
-                    if let Some((lo, hi)) = sil.row_span(j, f.i0, f.i1) {
-                        *span = (lo, hi - lo);
-                    }
-                }
+        // The shadow spans of this row (where the first plane is in view at all).
+        let floor_in_view = spans.first().is_some_and(|&(_, len)| len > 0);
+        for (row, sils) in f.shadow_rows.iter().zip(f.shadow).take(f.lights.len()) {
+            for (span, sil) in row.iter().zip(sils).take(f.spheres.len()) {
+                let cut = if floor_in_view {
+                    sil.row_span(j, f.i0, f.i1)
+                } else {
+                    None
+                };
+                span.set(cut.map_or((0, 0), |(lo, hi)| (lo, hi - lo)));
             }
         }
         Self {
             f,
             spans,
-            shadow,
             occluder: [NONE; L],
             marker: core::marker::PhantomData,
         }
@@ -544,9 +551,12 @@ impl<
             return blocked;
         }
         // A sphere outside its shadow span cannot block a primary hit on the floor.
-        let spans = self.shadow.get(light);
+        let spans = self.f.shadow_rows.get(light);
         let candidate = |k: Object| match (column, spans.and_then(|s| s.get(k))) {
-            (Some(i), Some(&(lo, len))) if from == n && k < n => i.wrapping_sub(lo) < len,
+            (Some(i), Some(span)) if from == n && k < n => {
+                let (lo, len) = span.get();
+                i.wrapping_sub(lo) < len
+            }
             _ => true,
         };
         let cached = self.occluder.get(light).copied().unwrap_or(NONE);
@@ -814,9 +824,12 @@ fn plane_span<T: TestStrategy, const N: usize, const L: usize>(
 /// - Point light at height `h_P` above the plane (the side it is on): the shadow lies
 ///   in the cut of the cone from the light that contains the sphere (half-angle
 ///   `α = asin(r/|C − P|)`, axis at angle `γ` from the plane's downward normal),
-///   bounded when `γ + α < 90°`: every cut point is within `h_P·tan(γ + α)` of the
-///   light's foot on the plane, and the axis meets the plane `h_P·tan γ` from the foot,
-///   so a ball there of radius `h_P·(tan(γ + α) + tan γ)` holds the shadow.
+///   bounded when `γ + α < 90°`. Centred where the axis meets the plane (`h_P·tan γ`
+///   from the light's foot along the tilt), the cut reaches along the tilt at most
+///   `h_P·max(tan(γ + α) − tan γ, tan γ − tan(γ − α))` (a direction within `α` of the
+///   axis projects, in the vertical plane of the axis, within `α` of it) and across it
+///   at most `|p − P|·sin α ≤ h_P·sin α / cos(γ + α)`: the root of the sum of their
+///   squares bounds its radius.
 ///
 /// The ball is enlarged by `2⁻⁸` of the lengths involved (far beyond the `f32`
 /// rounding of the hit point and of the shadow test, ≈ 2⁻²² of them), and the
@@ -861,9 +874,12 @@ fn shadow_silhouette(
             if !(gamma + alpha < core::f64::consts::FRAC_PI_2 - 1e-6) {
                 return Silhouette::All;
             }
-            // Every cut point is within h_P·tan(γ + α) of the light's foot on the plane,
-            // and the axis meets the plane h_P·tan γ from it.
-            let reach = libm::tan(gamma + alpha) + libm::tan(gamma);
+            // Along the tilt, a cut point lies h_P·tan θ from the light's foot with θ
+            // within α of γ; across it, at most |p − P|·sin α ≤ h_P·sin α/cos(γ + α).
+            let tan = libm::tan;
+            let tilt = (tan(gamma + alpha) - tan(gamma)).max(tan(gamma) - tan(gamma - alpha));
+            let across = libm::sin(alpha) / libm::cos(gamma + alpha);
+            let reach = libm::sqrt(tilt * tilt + across * across);
             (along(p, axis, h_p / libm::cos(gamma)), h_p * reach)
         }
     };

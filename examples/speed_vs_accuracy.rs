@@ -32,14 +32,16 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::text::Text;
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use embedded_raytracer::reference::{self, compare, ReferenceImage};
-use embedded_raytracer::{scene_file, Camera, Method, Options, Render, Scene, SphereTest, Sqrt, Stepping};
+use embedded_raytracer::{
+    scene_file, Camera, Method, Options, Render, Scene, SecondaryOrigin, SphereTest, Sqrt, Stepping,
+};
 use plotters::prelude::*;
 
 #[path = "common/cycle_model.rs"]
 mod cycle_model;
 #[path = "common/standard.rs"]
 mod standard;
-use standard::{MAX_SPHERES, SCENES};
+use standard::{FEATURE_SCENES, MAX_SPHERES, SCENES};
 
 // ---------------------------------------------------------------------------------
 // Timing and errors.
@@ -49,11 +51,11 @@ mod slice_target;
 use slice_target::SliceTarget;
 
 /// Median ns/pixel over `runs` renders.
-fn time_render<const N: usize>(
-    scene: &Scene<N>,
+fn time_render<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
     camera: &Camera,
     method: Method,
-    culling: bool,
+    options: Options,
     runs: usize,
 ) -> f64 {
     let size = camera.size();
@@ -61,7 +63,7 @@ fn time_render<const N: usize>(
     let mut buf = vec![Rgb565::BLACK; (size.width * size.height) as usize];
     let render = Render::new(scene, camera)
         .with_method(method)
-        .with_options(Options::DEFAULT.with_span_culling(culling));
+        .with_options(options);
     let mut times: Vec<f64> = (0..runs)
         .map(|_| {
             let mut target = SliceTarget { buf: &mut buf, size };
@@ -89,6 +91,40 @@ fn errors<const N: usize>(
         .with_options(Options::DEFAULT.with_span_culling(culling));
     let m = compare(&render, reference);
     (m.coverage_errors, m.shade_max)
+}
+
+/// Pixels more than 2 levels off the reference (outside its undecidable band), max and
+/// mean error, for a scene with lights, planes or mirrors.
+fn lit_errors<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    method: Method,
+    options: Options,
+    reference: &ReferenceImage,
+) -> (usize, u8, f64) {
+    let render = Render::<N, Rgb888, L, P, D>::new(scene, camera)
+        .with_method(method)
+        .with_options(options);
+    let m = compare(&render, reference);
+    (m.over_2, m.color_max, m.color_mean)
+}
+
+/// The secondary-origin axis of the lit scenes: every method with each.
+const ORIGINS: [(&str, SecondaryOrigin); 2] = [
+    ("convex", SecondaryOrigin::Convex),
+    ("epsilon 1e-3", SecondaryOrigin::TEXTBOOK),
+];
+
+/// One point of a lit scene: method × secondary origin (or the literal baseline).
+struct LitPoint {
+    scene: &'static str,
+    origin: &'static str,
+    label: String,
+    method: Option<Method>,
+    ns: f64,
+    over_2: usize,
+    color_max: u8,
+    color_mean: f64,
 }
 
 /// The scene of the estimated-cycles panels.
@@ -128,7 +164,7 @@ const BASELINE: &str = "baseline (literal, no culling)";
 // labels are drawn afterwards with embedded-graphics' built-in 6x10 mono font.
 
 const W: u32 = 2800;
-const H: u32 = 820;
+const H: u32 = 1230;
 
 fn test_color(t: Option<SphereTest>) -> RGBColor {
     match t {
@@ -183,6 +219,7 @@ type DrawResult<T> = Result<T, Box<dyn std::error::Error>>;
 
 fn plot(
     points: &[Point3],
+    lit: &[LitPoint],
     growth: &[(usize, String, f64)],
     cycles: &[(String, String, f64)],
     path: &Path,
@@ -194,8 +231,37 @@ fn plot(
         let root = BitMapBackend::with_buffer(&mut buf, (W, H)).into_drawing_area();
         root.fill(&WHITE)?;
         // Two rows of seven panels: coverage (top) and shade (bottom) per scene; the
-        // growth curve and the legend; the estimated-cycles panels.
-        let panels = root.split_evenly((2, 7));
+        // growth curve and the legend; the estimated-cycles panels. A third row: the
+        // lit scenes' pixels more than 2 levels off, per secondary origin.
+        let panels = root.split_evenly((3, 7));
+        let mut k = 14;
+        for scene in FEATURE_SCENES {
+            for (origin, _) in ORIGINS {
+                let sel: Vec<&LitPoint> = lit
+                    .iter()
+                    .filter(|p| p.scene == scene && (p.origin == origin || p.method.is_none()))
+                    .collect();
+                let xy: Vec<(f64, f64)> = sel.iter().map(|p| (p.ns, symlog(p.over_2 as f64))).collect();
+                let pts: Vec<Point3> = sel
+                    .iter()
+                    .map(|p| Point3 {
+                        scene: p.scene,
+                        label: p.label.clone(),
+                        method: p.method,
+                        ns: p.ns,
+                        coverage: p.over_2,
+                        shade: p.color_max,
+                        pixels: 0,
+                    })
+                    .collect();
+                let pts: Vec<&Point3> = pts.iter().collect();
+                if let (Some(area), false) = (panels.get(k), pts.is_empty()) {
+                    let title = format!("{scene}, {origin}: pixels > 2 levels off");
+                    draw_panel(area, &title, "ns/pixel", &xy, &pts, &mut labels)?;
+                }
+                k += 1;
+            }
+        }
         for (metric, name) in [(0, "coverage errors (pixels)"), (1, "max shade error (levels)")] {
             let error = |p: &Point3| {
                 symlog(if metric == 0 {
@@ -293,6 +359,12 @@ fn plot(
             item(&mut labels, y, "y: log10(1 + error)".into());
             y += 20;
             item(&mut labels, y, "errors vs the f64 reference".into());
+            y += 20;
+            item(&mut labels, y, "bottom row: lit scenes, secondary".into());
+            y += 12;
+            item(&mut labels, y, "  rays from the hit point (convex)".into());
+            y += 12;
+            item(&mut labels, y, "  or the textbook epsilon 1e-3".into());
         }
         root.present()?;
     }
@@ -623,7 +695,8 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let mut samples = vec![Vec::new(); cases.len()];
     for _ in 0..runs {
         for (k, (file, method, culling)) in cases.iter().enumerate() {
-            samples[k].push(time_render(&file.scene, &file.camera, *method, *culling, 1));
+            let options = Options::DEFAULT.with_span_culling(*culling);
+            samples[k].push(time_render(&file.scene, &file.camera, *method, options, 1));
         }
     }
     for (p, mut times) in points.iter_mut().zip(samples) {
@@ -654,7 +727,8 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             for sphere in crowd.scene.spheres().iter().take(n) {
                 scene.push(*sphere)?;
             }
-            let ns = time_render(&scene, &crowd.camera, method, culling, runs.min(7));
+            let options = Options::DEFAULT.with_span_culling(culling);
+            let ns = time_render(&scene, &crowd.camera, method, options, runs.min(7));
             eprintln!("growth {name:34} n={n:2} {ns:8.2} ns/pixel");
             growth.push((n, name.clone(), ns));
         }
@@ -668,15 +742,70 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         for stepping in [Stepping::Direct, Stepping::Incremental] {
             let robust = Method::new(stepping, SphereTest::Robust, Sqrt::Exact);
             let fd = Method::new(stepping, SphereTest::ForwardDiff, Sqrt::Exact);
-            let r = time_render(&file.scene, &file.camera, robust, false, runs);
-            let f = time_render(&file.scene, &file.camera, fd, false, runs);
+            let unculled = Options::DEFAULT.with_span_culling(false);
+            let r = time_render(&file.scene, &file.camera, robust, unculled, runs);
+            let f = time_render(&file.scene, &file.camera, fd, unculled, runs);
             isolated.push((scene, stepping, r, f));
         }
     }
 
+    // The lit scenes: every method with each secondary origin, and the literal baseline
+    // (no culling, closest-hit shadow rays), errors first, then interleaved timing.
+    let literal = Options::DEFAULT
+        .with_span_culling(false)
+        .with_shadow_any_hit(false);
+    let mut lit = Vec::new();
+    let mut lit_cases = Vec::new();
+    for scene in FEATURE_SCENES {
+        let file = standard::load_full(scene);
+        let reference = reference::render(&file.scene, &file.camera);
+        let methods = std::iter::once((BASELINE.to_string(), "convex", None, Method::LITERAL, literal))
+            .chain(ORIGINS.iter().flat_map(|&(name, origin)| {
+                Method::ALL.iter().map(move |m| {
+                    (
+                        m.to_string(),
+                        name,
+                        Some(*m),
+                        *m,
+                        Options::DEFAULT.with_secondary(origin),
+                    )
+                })
+            }));
+        let file = std::rc::Rc::new(file);
+        for (label, origin, tag, method, options) in methods {
+            let (over_2, color_max, color_mean) =
+                lit_errors(&file.scene, &file.camera, method, options, &reference);
+            lit.push(LitPoint {
+                scene,
+                origin,
+                label,
+                method: tag,
+                ns: f64::NAN,
+                over_2,
+                color_max,
+                color_mean,
+            });
+            lit_cases.push((file.clone(), method, options));
+        }
+    }
+    let mut samples = vec![Vec::new(); lit_cases.len()];
+    for _ in 0..runs {
+        for (k, (file, method, options)) in lit_cases.iter().enumerate() {
+            samples[k].push(time_render(&file.scene, &file.camera, *method, *options, 1));
+        }
+    }
+    for (p, mut times) in lit.iter_mut().zip(samples) {
+        times.sort_by(f64::total_cmp);
+        p.ns = times[times.len() / 2];
+        eprintln!(
+            "{:8} {:34} {:12} {:8.2} ns/pixel  >2 levels {:6}  max {:3}",
+            p.scene, p.label, p.origin, p.ns, p.over_2, p.color_max
+        );
+    }
+
     let cycles =
         estimated_cycles(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cycles_cortex_m4.txt"))?;
-    write_outputs(&args, runs, &points, &growth, &cycles, &isolated)?;
+    write_outputs(&args, runs, &points, &lit, &growth, &cycles, &isolated)?;
     Ok(())
 }
 
@@ -687,6 +816,7 @@ fn write_outputs(
     args: &Args,
     runs: usize,
     points: &[Point3],
+    lit: &[LitPoint],
     growth: &[(usize, String, f64)],
     cycles: &[(String, String, f64)],
     isolated: &[Isolated],
@@ -774,6 +904,54 @@ fn write_outputs(
         }
         writeln!(md)?;
     }
+    // The lit scenes.
+    let mut lit_csv = String::from(
+        "\nlit_scene,method,secondary,ns_per_pixel,speedup_vs_baseline,over_2_levels,max_error,mean_error\n",
+    );
+    for scene in FEATURE_SCENES {
+        let base = lit
+            .iter()
+            .find(|p| p.scene == scene && p.method.is_none())
+            .map_or(f64::NAN, |p| p.ns);
+        writeln!(md, "## {scene} (lights, a checkered floor, mirrors)\n")?;
+        writeln!(md, "Errors outside the reference's undecidable band; speed-up against the literal baseline (every object tested for every ray, closest-hit shadow rays, no culling).\n")?;
+        writeln!(
+            md,
+            "| method | secondary rays | ns/pixel | speed-up | pixels > 2 levels off | max error | mean error |"
+        )?;
+        writeln!(md, "|---|---|---:|---:|---:|---:|---:|")?;
+        for p in lit.iter().filter(|p| p.scene == scene) {
+            let default = if p.method == Some(Method::DEFAULT) && p.origin == "convex" {
+                " (default)"
+            } else {
+                ""
+            };
+            writeln!(
+                md,
+                "| {}{default} | {} | {:.2} | {:.2}× | {} | {} | {:.3} |",
+                p.label,
+                p.origin,
+                p.ns,
+                base / p.ns,
+                p.over_2,
+                p.color_max,
+                p.color_mean
+            )?;
+            writeln!(
+                lit_csv,
+                "{},{},{},{:.3},{:.3},{},{},{:.4}",
+                p.scene,
+                p.method.map_or("baseline".to_string(), |m| m.to_string()),
+                p.origin,
+                p.ns,
+                base / p.ns,
+                p.over_2,
+                p.color_max,
+                p.color_mean
+            )?;
+        }
+        writeln!(md)?;
+    }
     // Growth table.
     writeln!(
         md,
@@ -828,6 +1006,15 @@ fn write_outputs(
             "- default on `crowd` (64 spheres) costs {r:.2}× its ns/pixel on `lab` (target ≤ 4×)."
         )?;
     }
+    for scene in FEATURE_SCENES {
+        let find = |f: &dyn Fn(&LitPoint) -> bool| lit.iter().find(|p| p.scene == scene && f(p));
+        if let (Some(d), Some(b)) = (
+            find(&|p| p.method == Some(Method::DEFAULT) && p.origin == "convex"),
+            find(&|p| p.method.is_none()),
+        ) {
+            writeln!(md, "- default on `{scene}`: {:.2}× faster per pixel than the literal baseline (target ≥ 3×); {} pixels more than 2 levels off the reference outside its undecidable band (target 0).", b.ns / d.ns, d.over_2)?;
+        }
+    }
     let worst_default = points
         .iter()
         .filter(|p| p.method == Some(Method::DEFAULT))
@@ -841,10 +1028,11 @@ fn write_outputs(
         writeln!(csv, "{},{},{:.3}", g.1, g.0, g.2)?;
     }
 
+    csv.push_str(&lit_csv);
     let out = &args.out;
     std::fs::write(out.join("speed_vs_accuracy.csv"), csv)?;
     std::fs::write(out.join("speed_vs_accuracy.md"), &md)?;
-    plot(points, growth, cycles, &out.join("speed_vs_accuracy.png"))?;
+    plot(points, lit, growth, cycles, &out.join("speed_vs_accuracy.png"))?;
     println!("{md}");
     println!("wrote {}/speed_vs_accuracy.{{csv,md,png}}", out.display());
     Ok(())

@@ -145,7 +145,22 @@ struct FramePlane {
 }
 
 impl FramePlane {
-    /// The plane's constants; `None` for a zero or non-finite normal (never hit).
+    /// A plane no ray meets (`s = 0` and a zero normal: every `t` it gives is NaN or
+    /// not positive): what an unusable plane of an unchecked scene becomes, so the
+    /// other planes keep their object numbers.
+    const NEVER: FramePlane = FramePlane {
+        q: Vec3::ZERO,
+        n: Vec3::ZERO,
+        s: 0.0,
+        rgb: [0.0; 3],
+        checker: None,
+        e1: Vec3::ZERO,
+        e2: Vec3::ZERO,
+        inv_size: 0.0,
+        material: Material::DEFAULT,
+    };
+
+    /// The plane's constants; `None` for a zero or non-finite normal.
     fn new(plane: &crate::plane::Plane, eye: Vec3, scale: Scale) -> Option<Self> {
         let n = plane.normal.try_normalize()?;
         let q = (plane.point - eye) * scale.0;
@@ -350,10 +365,8 @@ fn render_with<
     };
     let mut planes: Vec<FramePlane, P> = Vec::new();
     for p in scene.planes() {
-        if let Some(fp) = FramePlane::new(p, eye, frame.scale) {
-            // Never fails: the scene holds at most P planes.
-            let _ = planes.push(fp);
-        }
+        // Never fails: the scene holds at most P planes.
+        let _ = planes.push(FramePlane::new(p, eye, frame.scale).unwrap_or(FramePlane::NEVER));
     }
     let mut lights: Vec<FrameLight, L> = Vec::new();
     for l in scene.lights() {

@@ -634,7 +634,10 @@ pub fn scale_sweep<const N: usize, const L: usize, const P: usize, const D: usiz
 ) -> Vec<LitPoint> {
     let mut out = Vec::new();
     for &k in scales {
-        let (Some(s), Some(c)) = (scaled_scene(scene, k as f32), scaled_camera(camera, k as f32, size)) else {
+        let (Some(s), Some(c)) = (
+            scaled_scene(scene, k as f32),
+            scaled_camera(camera, k as f32, size),
+        ) else {
             continue;
         };
         lit_points(k, &s, &c, &mut out);
@@ -905,7 +908,8 @@ pub fn horizon_rows(width: u32, height: u32, offset: f64) -> Vec<HorizonRow> {
             return;
         }
         let diff = |a: u8, b: u8| a.abs_diff(b) > 2;
-        if diff(s.color.r(), r.color.r()) || diff(s.color.g(), r.color.g()) || diff(s.color.b(), r.color.b()) {
+        if diff(s.color.r(), r.color.r()) || diff(s.color.g(), r.color.g()) || diff(s.color.b(), r.color.b())
+        {
             row.over_2 += 1;
         }
     });

@@ -806,8 +806,9 @@ pub fn mirror_inside_sweep(size: Size, scales: &[f64]) -> Vec<LitPoint> {
     out
 }
 
-/// The first swept value (in the points' order) at which `secondary` has a pixel that
-/// `count` counts, and the largest value before it at which it has none.
+/// Where `secondary` first fails in a sweep, in the points' order: `(clean, first)`,
+/// the last swept value before any pixel that `count` counts, and the first with one
+/// (`None` if it never fails).
 #[must_use]
 pub fn lit_failure(
     points: &[LitPoint],

@@ -38,18 +38,14 @@ fn main() -> ExitCode {
 }
 
 fn feature_scenes_table(out: &mut String) -> Result<(), scene_file::SceneFileError> {
-    out.push_str(
-        "### Every method on the feature scenes, per secondary-ray origin
-
-",
-    );
+    out.push_str("### Every method on the feature scenes, per secondary-ray origin\n\n");
     out.push_str(
         "240×240. Over 2: pixels with a channel more than 2 levels off the f64 reference, \
          undecidable pixels (silhouettes, horizons, shadow boundaries, checker edges, the \
          `n·l > 0` gate and mirror chains within `f32` rounding) excluded; max and mean: \
          absolute channel difference over the decidable pixels; coverage errors: pixels \
-         whose object differs. Convex: the default secondary-ray \
-         origin; ε = 1e-3: the textbook epsilon.\n\n",
+         whose object differs. Convex: the default secondary-ray origin; ε = 1e-3: the \
+         textbook epsilon.\n\n",
     );
     out.push_str(
         "| scene | method | over 2, convex | over 2, ε = 1e-3 | max, convex | max, ε = 1e-3 | mean, convex | mean, ε = 1e-3 | coverage errors | undecidable |\n",

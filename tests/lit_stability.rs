@@ -326,7 +326,7 @@ fn standard_feature_scene(name: &str, size: Size) {
     let f = standard::load_full(name);
     let camera = sweeps::scaled_camera(&f.camera, 1.0, size).unwrap();
     let truth = reference::render(&f.scene, &camera);
-    let m = reference::compare(&Render::<_, Rgb888, 8, 8, 8>::new(&f.scene, &camera), &truth);
+    let m = reference::compare(&Render::<_, Rgb888, { standard::MAX_LIGHTS }, { standard::MAX_PLANES }, { standard::MAX_DEPTH }>::new(&f.scene, &camera), &truth);
     println!(
         "{name} {size:?}: {m:?}; mirror band {}",
         truth.undecidable_by(why::MIRROR)

@@ -1,7 +1,8 @@
 //! Stability sweeps: each moves one parameter toward where the methods break and
-//! measures every method against the `f64` reference. `tests/stability.rs` asserts
-//! the failure points they find; `examples/accuracy_table.rs` prints them for the
-//! README. Both call these functions, so the table and the assertions cannot diverge.
+//! measures every method against the `f64` reference. `tests/stability.rs` and (for
+//! the secondary rays of lit scenes) `tests/lit_stability.rs` assert the failure
+//! points they find; `examples/accuracy_table.rs` prints them for the README. Both
+//! call these functions, so the table and the assertions cannot diverge.
 
 use std::vec::Vec;
 
@@ -706,8 +707,8 @@ pub fn elevation_sweep<const N: usize, const L: usize, const P: usize, const D: 
 
 /// Spheres of radius 1 resting on a checkered floor (centre height = radius) and sunk
 /// into it (centre height 0.5 and 0), back-lit by the sun 30° above the floor so their
-/// shadows fall toward the camera, which looks at the contact circles from 20° above
-/// the floor; every length multiplied by `k`.
+/// shadows fall toward the camera, which looks at the contact circles from about 18°
+/// above the floor; every length multiplied by `k`.
 #[must_use]
 pub fn contact_scene(k: f32) -> Option<(Scene<3, 1, 1>, Camera)> {
     let mut scene: Scene<3, 1, 1> = Scene::new(Rgb888::new(24, 34, 56));

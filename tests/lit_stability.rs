@@ -276,7 +276,7 @@ fn eye_inside_a_mirror_sphere_native() {
 /// A checkered floor seen by a camera 1 above it, 240×240, the horizon 0.5 px (level)
 /// and 0.005 px above the centre of row 120. Measured: the hit distance's relative
 /// error grows with the distance, since `d·n → 0` near the horizon cancels: 7.2e-6 at
-/// 416 (level camera), 1.2e-3 at 4.2e4 (0.005 px); under 1.1e-6 … 1.3e-5 from row 121
+/// 416 (level camera), 1.2e-3 at 4.2e4 (0.005 px); at most 3.8e-6 from row 121
 /// on. The checker is finer than a pixel (a pixel's footprint along the view exceeds a
 /// cell) in rows 120 … 133 of the level camera (hit distance ≥ 15.4): those rows alias,
 /// and the kernel aliases exactly like the reference, which samples the same pixel

@@ -1,19 +1,24 @@
 //! Stability sweeps: each moves one parameter toward where the methods break and
-//! measures every method against the `f64` reference. `tests/stability.rs` asserts
-//! the failure points they find; `examples/accuracy_table.rs` prints them for the
-//! README. Both call these functions, so the table and the assertions cannot diverge.
+//! measures every method against the `f64` reference. `tests/stability.rs` and (for
+//! the secondary rays of lit scenes) `tests/lit_stability.rs` assert the failure
+//! points they find; `examples/accuracy_table.rs` prints them for the README. Both
+//! call these functions, so the table and the assertions cannot diverge.
 
 use std::vec::Vec;
 
 use embedded_graphics::geometry::Size;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
-use super::{compare, intersect, render, render_params, Metrics, D3};
+use super::{compare, intersect, render, render_params, Metrics, ReferenceImage, D3};
 use crate::camera::{Camera, CameraParams, MIN_PIXEL_SIZE};
 use crate::error::CameraError;
+use crate::light::Light;
+use crate::lit::SecondaryOrigin;
+use crate::material::Material;
 use crate::method::{Method, SphereTest, Sqrt, Stepping};
-use crate::render::Render;
-use crate::scene::Scene;
+use crate::plane::Plane;
+use crate::render::{Options, Render};
+use crate::scene::{Scene, Settings};
 use crate::sphere::Sphere;
 use crate::vec3::Vec3;
 
@@ -441,4 +446,474 @@ pub fn up_angle_sweep() -> Vec<UpAnglePoint> {
             UpAnglePoint { angle, result }
         })
         .collect()
+}
+
+// ---------------------------------------------------------------------------------
+// Lit scenes: where secondary rays (shadow and reflection rays) fail.
+// ---------------------------------------------------------------------------------
+
+/// The secondary-ray origins the lit sweeps compare: the default convex exit and the
+/// textbook epsilon, `10⁻³` scene units.
+pub const SECONDARY: [SecondaryOrigin; 2] = [SecondaryOrigin::Convex, SecondaryOrigin::TEXTBOOK];
+
+/// How a lit render differs from the reference, with the errors of a secondary ray's
+/// origin told apart.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LitErrors {
+    /// The comparison ([`Metrics::over_2`] counts every pixel more than 2 levels off
+    /// outside the undecidable band).
+    pub metrics: Metrics,
+    /// Shadow acne: decidable pixels where the kernel is more than 2 levels darker than
+    /// the reference (in some channel, and in none brighter): a shadow ray was blocked
+    /// that the reference lets through to the light.
+    pub acne: usize,
+    /// Light leaks: decidable pixels where the kernel is more than 2 levels brighter
+    /// (in some channel, in none darker) and the reference is in a shadow there (its
+    /// colour with shadows off differs).
+    pub leak: usize,
+}
+
+impl LitErrors {
+    /// Pixels more than 2 levels off that are neither acne nor leaks.
+    #[must_use]
+    pub fn other(&self) -> usize {
+        self.metrics.over_2.saturating_sub(self.acne + self.leak)
+    }
+}
+
+/// Renders `scene` through `camera` with `method` and secondary rays leaving as
+/// `secondary`, and compares it with `truth` (the scene's reference) and `unshadowed`
+/// (the reference of the same scene with shadows off).
+#[must_use]
+pub fn lit_errors<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    truth: &ReferenceImage,
+    unshadowed: &ReferenceImage,
+    method: Method,
+    secondary: SecondaryOrigin,
+) -> LitErrors {
+    let render = Render::<N, Rgb888, L, P, D>::new(scene, camera)
+        .with_method(method)
+        .with_options(Options::DEFAULT.with_secondary(secondary));
+    let mut out = LitErrors {
+        metrics: compare(&render, truth),
+        ..LitErrors::default()
+    };
+    render.trace(|s| {
+        let (Ok(i), Ok(j)) = (u32::try_from(s.pixel.x), u32::try_from(s.pixel.y)) else {
+            return;
+        };
+        let (Some(r), Some(u)) = (truth.get(i, j), unshadowed.get(i, j)) else {
+            return;
+        };
+        if r.undecidable {
+            return;
+        }
+        let k = [s.color.r(), s.color.g(), s.color.b()];
+        let c = [r.color.r(), r.color.g(), r.color.b()];
+        let darker = k.iter().zip(c).any(|(&k, c)| u16::from(k) + 2 < u16::from(c));
+        let brighter = k.iter().zip(c).any(|(&k, c)| u16::from(c) + 2 < u16::from(k));
+        if darker && !brighter {
+            out.acne += 1;
+        } else if brighter && !darker && r.color != u.color {
+            out.leak += 1;
+        }
+    });
+    out
+}
+
+/// The same scene with shadows off.
+#[must_use]
+pub fn without_shadows<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+) -> Scene<N, L, P, D> {
+    let mut out = scene.clone();
+    // The scene's own settings with one flag changed: valid as they were.
+    let _ = out.set_settings(Settings {
+        shadows: false,
+        ..scene.settings()
+    });
+    out
+}
+
+/// The scene with every length multiplied by `k`: sphere centres and radii, plane
+/// points and checker sizes, point lights' positions (directions and colours
+/// unchanged). `None` if a scaled object is refused (non-finite, zero radius).
+#[must_use]
+pub fn scaled_scene<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    k: f32,
+) -> Option<Scene<N, L, P, D>> {
+    let mut out: Scene<N, L, P, D> = Scene::new(scene.background());
+    out.set_settings(scene.settings()).ok()?;
+    for s in scene.spheres() {
+        out.push(Sphere {
+            center: s.center * k,
+            radius: s.radius * k,
+            ..*s
+        })
+        .ok()?;
+    }
+    for l in scene.lights() {
+        out.push_light(match *l {
+            Light::Point { position, intensity } => Light::point(position * k, intensity),
+            other => other,
+        })
+        .ok()?;
+    }
+    for p in scene.planes() {
+        out.push_plane(Plane {
+            point: p.point * k,
+            checker_size: p.checker_size * k,
+            ..*p
+        })
+        .ok()?;
+    }
+    Some(out)
+}
+
+/// The camera with its eye and look-at point multiplied by `k`, at `size` pixels (the
+/// same view: the field of view is kept).
+#[must_use]
+pub fn scaled_camera(camera: &Camera, k: f32, size: Size) -> Option<Camera> {
+    let p = *camera.params();
+    CameraParams {
+        eye: p.eye * k,
+        look_at: p.look_at * k,
+        size,
+        ..p
+    }
+    .build()
+    .ok()
+}
+
+/// One point of a lit sweep: the swept value, the secondary origin, the errors.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LitPoint {
+    /// The swept parameter (a scale, an elevation in degrees, …).
+    pub x: f64,
+    /// How secondary rays left their surface.
+    pub secondary: SecondaryOrigin,
+    /// Against the reference.
+    pub errors: LitErrors,
+}
+
+/// Measures `scene` through `camera` with the default method and each of [`SECONDARY`],
+/// as points at `x`.
+pub fn lit_points<const N: usize, const L: usize, const P: usize, const D: usize>(
+    x: f64,
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    out: &mut Vec<LitPoint>,
+) {
+    let truth = render(scene, camera);
+    let unshadowed = render(&without_shadows(scene), camera);
+    for secondary in SECONDARY {
+        out.push(LitPoint {
+            x,
+            secondary,
+            errors: lit_errors(scene, camera, &truth, &unshadowed, Method::DEFAULT, secondary),
+        });
+    }
+}
+
+/// The scales of the scale sweep: `10^(k/2)` from `10⁻³` to `10⁵`.
+#[must_use]
+pub fn lit_scales() -> Vec<f64> {
+    (-6..=10).map(|k| 10f64.powf(f64::from(k) / 2.0)).collect()
+}
+
+/// The scene and its camera with every length multiplied by each of `scales`, the
+/// image `size` pixels: every [`SECONDARY`] origin at every scale.
+#[must_use]
+pub fn scale_sweep<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    size: Size,
+    scales: &[f64],
+) -> Vec<LitPoint> {
+    let mut out = Vec::new();
+    for &k in scales {
+        let (Some(s), Some(c)) = (
+            scaled_scene(scene, k as f32),
+            scaled_camera(camera, k as f32, size),
+        ) else {
+            continue;
+        };
+        lit_points(k, &s, &c, &mut out);
+    }
+    out
+}
+
+/// The elevations of the light-elevation sweep, in degrees above the floor.
+pub const ELEVATIONS: [f64; 9] = [60.0, 30.0, 15.0, 8.0, 4.0, 2.0, 1.0, 0.5, 0.25];
+
+/// The scene lit by one directional light at `elevation` degrees above its first plane
+/// (from the side its first directional light comes from, along the plane), instead of
+/// its own lights. `None` without a plane or a directional light.
+#[must_use]
+pub fn at_elevation<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    elevation: f64,
+    intensity: f32,
+) -> Option<Scene<N, L, P, D>> {
+    let n = D3::of(scene.planes().first()?.normal).normalize()?;
+    let sun = scene.lights().iter().find_map(|l| match *l {
+        Light::Directional { direction, .. } => Some(D3::of(direction)),
+        Light::Point { .. } => None,
+    })?;
+    // The sun's travel direction along the plane, then tilted down by the elevation.
+    let along = (sun - n * sun.dot(n)).normalize()?;
+    let e = elevation.to_radians();
+    let d = along * e.cos() - n * e.sin();
+    let mut out: Scene<N, L, P, D> = Scene::new(scene.background());
+    out.set_settings(scene.settings()).ok()?;
+    for s in scene.spheres() {
+        out.push(*s).ok()?;
+    }
+    for p in scene.planes() {
+        out.push_plane(*p).ok()?;
+    }
+    out.push_light(Light::directional(
+        Vec3::new(d.x as f32, d.y as f32, d.z as f32),
+        intensity,
+    ))
+    .ok()?;
+    Some(out)
+}
+
+/// The scene under one directional light at each of `elevations` (degrees, see
+/// [`at_elevation`]), multiplied by `scale`, the image `size` pixels.
+#[must_use]
+pub fn elevation_sweep<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    size: Size,
+    scale: f32,
+    elevations: &[f64],
+) -> Vec<LitPoint> {
+    let mut out = Vec::new();
+    let (Some(base), Some(c)) = (scaled_scene(scene, scale), scaled_camera(camera, scale, size)) else {
+        return out;
+    };
+    for &e in elevations {
+        if let Some(s) = at_elevation(&base, e, 1.0) {
+            lit_points(e, &s, &c, &mut out);
+        }
+    }
+    out
+}
+
+/// Spheres of radius 1 resting on a checkered floor (centre height = radius) and sunk
+/// into it (centre height 0.5 and 0), back-lit by the sun 30° above the floor so their
+/// shadows fall toward the camera, which looks at the contact circles from about 18°
+/// above the floor; every length multiplied by `k`.
+#[must_use]
+pub fn contact_scene(k: f32) -> Option<(Scene<3, 1, 1>, Camera)> {
+    let mut scene: Scene<3, 1, 1> = Scene::new(Rgb888::new(24, 34, 56));
+    for (x, y, c) in [
+        (-2.3, 1.0, Rgb888::new(230, 60, 50)),
+        (0.0, 0.5, Rgb888::new(60, 200, 90)),
+        (2.3, 0.0, Rgb888::new(70, 110, 240)),
+    ] {
+        scene.push(Sphere::new(Vec3::new(x, y, 0.0) * k, k, c)).ok()?;
+    }
+    scene
+        .push_plane(
+            Plane::new(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), Rgb888::new(225, 225, 215))
+                .with_checker(Rgb888::new(70, 70, 80), k),
+        )
+        .ok()?;
+    let e = 30f32.to_radians();
+    scene
+        .push_light(Light::directional(Vec3::new(0.2, -e.sin(), e.cos()), 0.9))
+        .ok()?;
+    let camera = Camera::new(
+        Vec3::new(0.4, 3.2, 8.8) * k,
+        Vec3::new(0.0, 0.3, 0.0) * k,
+        Vec3::new(0.0, 1.0, 0.0),
+        0.75,
+        Size::new(120, 60),
+    )
+    .ok()?;
+    Some((scene, camera))
+}
+
+/// The scales of the contact sweep: `10^(−k/2)` from 1 down to `10⁻⁴`.
+#[must_use]
+pub fn contact_scales() -> Vec<f64> {
+    (0..=8).map(|k| 10f64.powf(-f64::from(k) / 2.0)).collect()
+}
+
+/// [`contact_scene`] at each of `scales`, every [`SECONDARY`] origin.
+#[must_use]
+pub fn contact_sweep(scales: &[f64]) -> Vec<LitPoint> {
+    let mut out = Vec::new();
+    for &k in scales {
+        if let Some((s, c)) = contact_scene(k as f32) {
+            lit_points(k, &s, &c, &mut out);
+        }
+    }
+    out
+}
+
+/// The eye inside a mirror sphere (radius 5, reflect 0.8) with a red ball inside it,
+/// lit by a point light inside, reflections 8 deep; every length multiplied by `k`.
+#[must_use]
+pub fn mirror_inside_scene(k: f32, size: Size) -> Option<(Scene<2, 1, 0, 8>, Camera)> {
+    let mut scene: Scene<2, 1, 0, 8> = Scene::new(Rgb888::BLACK);
+    scene
+        .set_settings(Settings {
+            max_depth: 8,
+            ..Settings::DEFAULT
+        })
+        .ok()?;
+    scene
+        .push(
+            Sphere::new(Vec3::ZERO, 5.0 * k, Rgb888::new(200, 200, 200))
+                .with_material(Material::new(0.3, 32.0, 0.8)),
+        )
+        .ok()?;
+    scene
+        .push(
+            Sphere::new(Vec3::new(1.0, -1.0, -2.0) * k, k, Rgb888::new(230, 60, 50))
+                .with_material(Material::new(0.3, 32.0, 0.0)),
+        )
+        .ok()?;
+    scene
+        .push_light(Light::point(Vec3::new(0.0, 3.0, 1.0) * k, 0.8))
+        .ok()?;
+    let camera = Camera::new(
+        Vec3::new(0.0, 0.0, 3.0) * k,
+        Vec3::ZERO,
+        Vec3::new(0.0, 1.0, 0.0),
+        1.0,
+        size,
+    )
+    .ok()?;
+    Some((scene, camera))
+}
+
+/// [`mirror_inside_scene`] at each of `scales`, every [`SECONDARY`] origin.
+#[must_use]
+pub fn mirror_inside_sweep(size: Size, scales: &[f64]) -> Vec<LitPoint> {
+    let mut out = Vec::new();
+    for &k in scales {
+        if let Some((s, c)) = mirror_inside_scene(k as f32, size) {
+            lit_points(k, &s, &c, &mut out);
+        }
+    }
+    out
+}
+
+/// Where `secondary` first fails in a sweep, in the points' order: `(clean, first)`,
+/// the last swept value before any pixel that `count` counts, and the first with one
+/// (`None` if it never fails).
+#[must_use]
+pub fn lit_failure(
+    points: &[LitPoint],
+    secondary: SecondaryOrigin,
+    count: impl Fn(&LitErrors) -> usize,
+) -> (Option<f64>, Option<f64>) {
+    let mut clean = None;
+    for p in points.iter().filter(|p| p.secondary == secondary) {
+        if count(&p.errors) > 0 {
+            return (clean, Some(p.x));
+        }
+        clean = Some(p.x);
+    }
+    (clean, None)
+}
+
+/// One image row of the horizon measurement.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct HorizonRow {
+    /// The row (0 at the top; the horizon is between rows `H/2 − 1` and `H/2`).
+    pub row: u32,
+    /// The reference's hit distance at the row's centre pixel (`0`: no floor hit).
+    pub distance: f64,
+    /// How far along the floor the row's centre pixel reaches past the next row's
+    /// (the pixel's footprint along the view), in checker cells.
+    pub footprint_cells: f64,
+    /// Largest relative error of the kernel's hit distance over the row's pixels where
+    /// both show the floor.
+    pub distance_rel_max: f64,
+    /// Decidable pixels more than 2 levels off the reference.
+    pub over_2: usize,
+    /// Pixels the reference cannot decide.
+    pub undecidable: usize,
+}
+
+/// A checkered floor (cells of 1, lit from overhead) seen by a camera 1 above it, tilted
+/// so the horizon lies `offset` pixels above the centre of row `H/2` (`0.5`: a level
+/// camera, the horizon across the middle of the image; near 0 the row's rays graze the
+/// floor): per row from `H/2` down, the kernel (default method) against the reference.
+#[must_use]
+pub fn horizon_rows(width: u32, height: u32, offset: f64) -> Vec<HorizonRow> {
+    let mut out = Vec::new();
+    let mut scene: Scene<0, 1, 1> = Scene::new(Rgb888::new(110, 150, 210));
+    let floor = Plane::new(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), Rgb888::new(225, 225, 215))
+        .with_checker(Rgb888::new(40, 40, 50), 1.0);
+    let light = Light::directional(Vec3::new(0.3, -1.0, -0.2), 0.9);
+    if scene.push_plane(floor).is_err() || scene.push_light(light).is_err() {
+        return out;
+    }
+    // Pitched up by φ, the horizon appears at image height −tan φ: row H/2's centre is
+    // at −ph/2, so tan φ = ph·(½ − offset).
+    let fov = core::f32::consts::FRAC_PI_3;
+    let ph = 2.0 * (f64::from(fov) / 2.0).tan() / f64::from(height.max(1));
+    let rise = (10.0 * ph * (0.5 - offset)) as f32;
+    let Ok(camera) = Camera::new(
+        Vec3::new(0.37, 1.0, 0.21),
+        Vec3::new(0.37, 1.0 + rise, 0.21 - 10.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        fov,
+        Size::new(width, height),
+    ) else {
+        return out;
+    };
+    let truth = render(&scene, &camera);
+    let cam = truth.camera;
+    let point = |i: u32, j: u32| {
+        let r = truth.get(i, j)?;
+        let d = cam.direction(i, j).normalize()?;
+        (r.hit == Some(0)).then(|| cam.eye + d * r.distance)
+    };
+    let mid = width / 2;
+    for j in height / 2..height {
+        let mut row = HorizonRow {
+            row: j,
+            distance: truth.get(mid, j).map_or(0.0, |r| r.distance),
+            ..HorizonRow::default()
+        };
+        if let (Some(a), Some(b)) = (point(mid, j), point(mid, j + 1)) {
+            row.footprint_cells = (a - b).length();
+        }
+        out.push(row);
+    }
+    Render::<0, Rgb888, 1, 1>::new(&scene, &camera).trace(|s| {
+        let (Ok(i), Ok(j)) = (u32::try_from(s.pixel.x), u32::try_from(s.pixel.y)) else {
+            return;
+        };
+        let (Some(r), Some(row)) = (truth.get(i, j), out.iter_mut().find(|x| x.row == j)) else {
+            return;
+        };
+        // The hit distance wherever both see the floor, in the band or not.
+        if let (Some(h), Some(_)) = (s.hit, r.hit) {
+            let distance = f64::from(h.t) * D3::of(s.direction).length();
+            let rel = (distance - r.distance).abs() / r.distance;
+            row.distance_rel_max = row.distance_rel_max.max(rel);
+        }
+        if r.undecidable {
+            row.undecidable += 1;
+            return;
+        }
+        let diff = |a: u8, b: u8| a.abs_diff(b) > 2;
+        if diff(s.color.r(), r.color.r()) || diff(s.color.g(), r.color.g()) || diff(s.color.b(), r.color.b())
+        {
+            row.over_2 += 1;
+        }
+    });
+    out
 }

@@ -68,6 +68,7 @@ mod fw {
         run.check_sqrt();
         run.sink();
         run.every_scene();
+        run.feature_scenes();
         run.finish()
     }
 }

@@ -305,21 +305,20 @@ impl<P: Platform> Run<P> {
         }
     }
 
-    /// One render measured at 240×240: hash, pixels, instructions, stack, printed as
-    /// `hash NAME METHODSUFFIX …`. `draw` renders into the hash it is given; it runs
-    /// twice, once timed, once for the stack.
-    fn measure(&mut self, name: &str, method: Method, suffix: &str, draw: impl Fn(&mut PixelHash)) {
+    /// Prints one render's line, `hash NAME METHODSUFFIX …`, and fails the run on a
+    /// wrong pixel count, two passes that differ, or a stack overflow.
+    #[allow(clippy::too_many_arguments)]
+    fn report(
+        &mut self,
+        name: &str,
+        method: Method,
+        suffix: &str,
+        hash: &PixelHash,
+        again: &PixelHash,
+        instr: u64,
+        stack: Option<usize>,
+    ) {
         let expected_pixels = u64::from(SIZE.width) * u64::from(SIZE.height);
-        // Timed pass (the counter's interrupt on).
-        let mut hash = PixelHash::new(SIZE);
-        let instr = self.timed(|| draw(&mut hash));
-        // Stack pass: the counter's interrupt off (it would push its frame onto the
-        // render's stack), the counter keeps running. Ticks lost meanwhile are
-        // harmless: only differences within one timed pass are used.
-        self.platform.quiet(true);
-        let mut again = PixelHash::new(SIZE);
-        let stack = stack_of(&self.platform, || draw(&mut again));
-        self.platform.quiet(false);
         let pixels = hash.pixels();
         let ipp10 = ipp10(instr, pixels);
         self.platform.print(format_args!(
@@ -356,12 +355,24 @@ impl<P: Platform> Run<P> {
             return;
         };
         for method in Method::ALL {
-            self.measure(name, method, "", |hash| render(scene, &camera, method, hash));
+            // Timed pass (the counter's interrupt on).
+            let mut hash = PixelHash::new(SIZE);
+            let instr = self.timed(|| render(scene, &camera, method, &mut hash));
+            // Stack pass: the counter's interrupt off (it would push its frame onto the
+            // render's stack), the counter keeps running. Ticks lost meanwhile are
+            // harmless: only differences within one timed pass are used.
+            self.platform.quiet(true);
+            let mut again = PixelHash::new(SIZE);
+            let stack = stack_of(&self.platform, || render(scene, &camera, method, &mut again));
+            self.platform.quiet(false);
+            self.report(name, method, "", &hash, &again, instr, stack);
         }
     }
 
     /// The renders of `scenes::FEATURE_RENDERS` (method and options) on one scene with
-    /// lights, planes or mirrors.
+    /// lights, planes or mirrors, measured as [`Run::measure_scene`] measures. The two
+    /// passes call the render directly, as there: the stack figure is counted from
+    /// inside `stack_of`, whose frame holds the closure.
     pub fn measure_feature_scene<const N: usize, const L: usize, const PL: usize, const D: usize>(
         &mut self,
         name: &str,
@@ -372,9 +383,15 @@ impl<P: Platform> Run<P> {
             return;
         };
         for (method, suffix, options) in scenes::FEATURE_RENDERS {
-            self.measure(name, method, suffix, |hash| {
-                render_features(scene, &camera, method, options, hash)
+            let mut hash = PixelHash::new(SIZE);
+            let instr = self.timed(|| render_features(scene, &camera, method, options, &mut hash));
+            self.platform.quiet(true);
+            let mut again = PixelHash::new(SIZE);
+            let stack = stack_of(&self.platform, || {
+                render_features(scene, &camera, method, options, &mut again)
             });
+            self.platform.quiet(false);
+            self.report(name, method, suffix, &hash, &again, instr, stack);
         }
     }
 

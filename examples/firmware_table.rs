@@ -284,7 +284,7 @@ fn feature_table(output: &QemuOutput, cycles: &[CycleEstimate]) {
             Some(c) if c.hash == e.hash => {
                 let per_pixel = c.cycles / c.pixels;
                 format!(
-                    "{per_pixel:.1} | {:.1} | {:.1}",
+                    "{per_pixel:.1} | {:.2} | {:.2}",
                     F_CLK_HZ / ((per_pixel + WIRE_CYCLES_PER_PIXEL) * PIXELS),
                     F_CLK_HZ / (per_pixel.max(WIRE_CYCLES_PER_PIXEL) * PIXELS)
                 )

@@ -17,8 +17,9 @@
 //! ELF: the same code, the same estimates. First, the sink alone (the `sink_only` of
 //! `qemu_cortex_m4`); last (not with `features`), the default method on lab traced into
 //! a band buffer ([`Render::draw_band`], `Rgb888`, [`BAND_ROWS`](fw::BAND_ROWS) rows at
-//! a time): the path of a display driver that sends bands, without a `DrawTarget`. Its region counts the `draw_band` calls only:
-//! hashing each band (to check its pixels) lies between the pause and resume markers.
+//! a time): the path of a display driver that sends bands, without a `DrawTarget`. Its
+//! region counts the `draw_band` calls only: hashing each band (to check its pixels)
+//! lies between the pause and resume markers.
 //! Prints, after each region, the line that labels it:
 //!
 //! ```text

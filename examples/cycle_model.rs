@@ -35,8 +35,9 @@
 //! labels'.
 //!
 //! `table` formats a file of such lines (default `tests/data/cycles_cortex_m4.txt`) as
-//! the README's Markdown: cycles per pixel beside instructions per pixel, and the
-//! default method's breakdown on `lab`; with `--qemu`, the trace's instruction counts
+//! the README's Markdown: cycles per pixel beside instructions per pixel, the default
+//! method's breakdown on `lab`, and the default's cycles on the scenes with lights, a
+//! floor and mirrors with the frame rates they imply beside an ST7789 at 42 MHz; with `--qemu`, the trace's instruction counts
 //! are compared with the SysTick-measured ones of that `qemu_cortex_m4` output (which
 //! must come from the same kernel).
 //!
@@ -55,7 +56,7 @@ use std::process::ExitCode;
 
 use cycle_model::{Counts, Kind, ModelError, Program, Tracer, DIVIDE_CYCLES, P};
 use embedded_raytracer::Method;
-use standard::SCENES;
+use standard::{FEATURE_SCENES, SCENES};
 
 /// The STM32F405/407's maximum core clock.
 const F_CLK_HZ: f64 = 168e6;
@@ -406,6 +407,31 @@ fn table(args: &[String]) -> Result<(), ModelError> {
             band.per_pixel("instr"),
             F_CLK_HZ / band.get("cycles"),
         );
+    }
+    // The scenes with lights, a floor and mirrors: the default method, and the frame
+    // rate with a 240×240 ST7789 on SPI at 42 MHz (16 bits a pixel, 4 core cycles a bit
+    // at 168 MHz): blocking traces then sends, overlapped sends while it traces (the
+    // larger of the two, at best).
+    let wire = 16.0 * 4.0 * e.get("pixels");
+    for scene in FEATURE_SCENES {
+        if let Some(f) = find(scene, &default) {
+            println!(
+                "The default on `{scene}`: **{:.1} estimated cycles per pixel** for {:.1} instructions (CPI {:.2}), \
+                 {:.2} frames/s at 168 MHz; with the ST7789 at 42 MHz ({:.1} ms a frame on the wire) {:.2} frames/s \
+                 blocking (trace + wire), {:.2} overlapped (the larger of the two, at best). Cycles spent on \
+                 `VDIV`/`VSQRT` {:.0} %, other FPU {:.0} %, loads and stores {:.0} %.",
+                f.per_pixel("cycles"),
+                f.per_pixel("instr"),
+                f.get("cycles") / f.get("instr"),
+                F_CLK_HZ / f.get("cycles"),
+                1e3 * wire / F_CLK_HZ,
+                F_CLK_HZ / (f.get("cycles") + wire),
+                F_CLK_HZ / f.get("cycles").max(wire),
+                100.0 * f.get(Kind::DivSqrt.key()) / f.get("cycles"),
+                100.0 * f.get(Kind::Fp.key()) / f.get("cycles"),
+                100.0 * f.get(Kind::LoadStore.key()) / f.get("cycles"),
+            );
+        }
     }
     if let Some(qemu_path) = option(args, "--qemu") {
         let qemu =

@@ -10,8 +10,11 @@
 //! `scenes/*.toml`) with every method in `Method::ALL` into a [`PixelHash`] — the board
 //! has 128 KiB of RAM and no framebuffer — **at 240×240**: each scene's own camera
 //! (eye, look-at, up, vertical field of view) with its size replaced by 240×240, so the
-//! horizontal field of view follows from the square aspect. Prints, one line per scene
-//! and method, in a format `tests/firmware_hashes.rs` parses:
+//! horizontal field of view follows from the square aspect. Then the scenes with lights,
+//! a floor and mirrors (`shadows`, `mirrors`) with the renders of
+//! `scenes::FEATURE_RENDERS`: the default method with the default options, the literal
+//! options and the textbook epsilon, and the seed's method with the literal options.
+//! Prints, one line per scene and render, in a format `tests/firmware_hashes.rs` parses:
 //!
 //! ```text
 //! hash lab incremental/robust/exact 0x0123456789abcdef pixels 57600 instr 3456789 ipp 60.0 stack 312
@@ -68,6 +71,7 @@ mod fw {
         run.check_sqrt();
         run.sink();
         run.every_scene();
+        run.feature_scenes();
         run.finish()
     }
 }

@@ -4,19 +4,22 @@
 //! `cycle_model` (which reads QEMU's execution log) counts exactly the render call.
 //!
 //! ```sh
-//! bash .ci/cycles --quick    # the default method on lab (and the sink alone)
-//! bash .ci/cycles --update   # every method on every standard scene
+//! bash .ci/cycles --quick    # the default method on lab, shadows and mirrors (and the sink alone)
+//! bash .ci/cycles --update   # every method on every Lab #1 scene, the default on shadows and mirrors
 //! ```
 //!
-//! Which renders: the default method on `lab`, or every method in `Method::ALL` on
-//! every standard scene if QEMU's semihosting command line holds the word `all`
-//! (`-semihosting-config enable=on,target=native,arg=qemu_cycles,arg=all`). Chosen at
-//! run time, so that both selections trace the same ELF: the same code, the same
-//! estimates. First, the sink alone (the `sink_only` of `qemu_cortex_m4`); last, the
-//! default method on lab traced into a band buffer ([`Render::draw_band`], `Rgb888`,
-//! [`BAND_ROWS`](fw::BAND_ROWS) rows at a time): the path of a display driver that
-//! sends bands, without a `DrawTarget`. Its region counts the `draw_band` calls only:
-//! hashing each band (to check its pixels) lies between the pause and resume markers.
+//! Which renders: the default method on `lab`; with the word `features` on QEMU's
+//! semihosting command line (`-semihosting-config
+//! enable=on,target=native,arg=qemu_cycles,arg=features`) instead the default method on
+//! each scene with lights, a floor and mirrors (`shadows`, `mirrors`); with the word
+//! `all`, every method in `Method::ALL` on every Lab #1 scene and the default on the
+//! scenes with features. Chosen at run time, so that every selection traces the same
+//! ELF: the same code, the same estimates. First, the sink alone (the `sink_only` of
+//! `qemu_cortex_m4`); last (not with `features`), the default method on lab traced into
+//! a band buffer ([`Render::draw_band`], `Rgb888`, [`BAND_ROWS`](fw::BAND_ROWS) rows at
+//! a time): the path of a display driver that sends bands, without a `DrawTarget`. Its
+//! region counts the `draw_band` calls only: hashing each band (to check its pixels)
+//! lies between the pause and resume markers.
 //! Prints, after each region, the line that labels it:
 //!
 //! ```text
@@ -58,20 +61,58 @@ mod fw {
 
     /// Every scene is rendered at this size (its own camera otherwise).
     const SIZE: Size = Size::new(240, 240);
-    /// Whether the semihosting command line asks for every render (the word `all`).
-    fn every_render() -> bool {
+    /// Which renders the semihosting command line asks for.
+    #[derive(Clone, Copy, PartialEq)]
+    enum Selection {
+        /// No word: the default method on lab, then into bands.
+        Quick,
+        /// `features`: the default method on each scene with lights, a floor and mirrors.
+        Features,
+        /// `all`: every method on every Lab #1 scene, the default on each scene with
+        /// features, then the default on lab into bands.
+        All,
+    }
+
+    /// The renders the semihosting command line's words ask for.
+    fn selection() -> Selection {
         let mut line = [0u8; 128];
         // SAFETY: SYS_GET_CMDLINE writes at most `line.len()` bytes (NUL-terminated)
         // into `line`; a line that does not fit is an error status, not a write.
         let status = unsafe { syscall!(GET_CMDLINE, line.as_mut_ptr(), line.len()) };
-        status == 0 && line.split(|&b| b == b' ' || b == 0).any(|word| word == b"all")
+        let has = |w: &[u8]| status == 0 && line.split(|&b| b == b' ' || b == 0).any(|word| word == w);
+        if has(b"all") {
+            Selection::All
+        } else if has(b"features") {
+            Selection::Features
+        } else {
+            Selection::Quick
+        }
     }
 
     /// The render under test, as in `qemu_cortex_m4`: never inlined, so the region is
     /// the call and nothing of the caller's loop.
     #[inline(never)]
-    fn render<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, target: &mut PixelHash) {
+    fn render<const N: usize, const L: usize, const P: usize, const D: usize>(
+        scene: &Scene<N, L, P, D>,
+        camera: &Camera,
+        method: Method,
+        target: &mut PixelHash,
+    ) {
         let Ok(()) = Render::new(scene, camera).with_method(method).draw(target);
+    }
+
+    /// The default method on a scene with features: the method a constant, so that the
+    /// firmware links its loop only (a run-time method would link all 30 loops for each
+    /// scene type, more than the flash holds). Never inlined, like [`render`].
+    #[inline(never)]
+    fn render_default<const N: usize, const L: usize, const P: usize, const D: usize>(
+        scene: &Scene<N, L, P, D>,
+        camera: &Camera,
+        target: &mut PixelHash,
+    ) {
+        let Ok(()) = Render::new(scene, camera)
+            .with_method(Method::DEFAULT)
+            .draw(target);
     }
 
     /// The sink alone, as `qemu_cortex_m4`'s `sink_only`: 240 rows of 240 pixels
@@ -155,10 +196,10 @@ mod fw {
     }
 
     impl scenes::EachScene for Renders<'_> {
-        fn scene<const N: usize>(
+        fn scene<const N: usize, const L: usize, const P: usize, const D: usize>(
             &mut self,
             name: &'static str,
-            scene: &'static Scene<N>,
+            scene: &'static Scene<N, L, P, D>,
             params: CameraParams,
         ) {
             if !render_scene(name, scene, params, self.methods) {
@@ -167,11 +208,49 @@ mod fw {
         }
     }
 
+    /// Renders the default method on each scene it is given, between the markers.
+    struct DefaultRenders {
+        /// A camera could not be built or a pixel count was wrong.
+        failed: bool,
+    }
+
+    impl scenes::EachScene for DefaultRenders {
+        fn scene<const N: usize, const L: usize, const P: usize, const D: usize>(
+            &mut self,
+            name: &'static str,
+            scene: &'static Scene<N, L, P, D>,
+            params: CameraParams,
+        ) {
+            let Ok(camera) = (CameraParams { size: SIZE, ..params }).build() else {
+                hprintln!("camera {}: cannot be built", name);
+                self.failed = true;
+                return;
+            };
+            let mut hash = PixelHash::new(SIZE);
+            cycle_region_begin();
+            render_default(scene, &camera, &mut hash);
+            cycle_region_end();
+            print_region(name, Method::DEFAULT, &hash);
+            self.failed |= hash.pixels() != u64::from(SIZE.width) * u64::from(SIZE.height);
+        }
+    }
+
+    /// The line that labels the region just ended.
+    fn print_region(name: &str, method: Method, hash: &PixelHash) {
+        hprintln!(
+            "region {} {} hash {:#018x} pixels {}",
+            name,
+            method,
+            hash.hash(),
+            hash.pixels()
+        );
+    }
+
     /// Renders `methods` on one scene, each between the markers; false if the camera
     /// cannot be built or a pixel count is wrong.
-    fn render_scene<const N: usize>(
+    fn render_scene<const N: usize, const L: usize, const P: usize, const D: usize>(
         name: &str,
-        scene: &Scene<N>,
+        scene: &Scene<N, L, P, D>,
         params: CameraParams,
         methods: &[Method],
     ) -> bool {
@@ -185,13 +264,7 @@ mod fw {
             cycle_region_begin();
             render(scene, &camera, method, &mut hash);
             cycle_region_end();
-            hprintln!(
-                "region {} {} hash {:#018x} pixels {}",
-                name,
-                method,
-                hash.hash(),
-                hash.pixels()
-            );
+            print_region(name, method, &hash);
             ok &= hash.pixels() == u64::from(SIZE.width) * u64::from(SIZE.height);
         }
         ok
@@ -199,13 +272,13 @@ mod fw {
 
     #[entry]
     fn main() -> ! {
-        let all = every_render();
+        let selection = selection();
         hprintln!(
             "qemu_cycles: {} at {}x{}",
-            if all {
-                "every method on every standard scene"
-            } else {
-                "the default method on lab"
+            match selection {
+                Selection::Quick => "the default method on lab",
+                Selection::Features => "the default method on the scenes with lights, a floor and mirrors",
+                Selection::All => "every method on every standard scene",
             },
             SIZE.width,
             SIZE.height
@@ -216,17 +289,26 @@ mod fw {
         cycle_region_end();
         hprintln!("region sink pixelhash pixels {}", hash.pixels());
 
-        let ok = if all {
-            let mut renders = Renders {
-                methods: &Method::ALL,
-                failed: false,
-            };
-            scenes::for_each(&mut renders);
-            !renders.failed
-        } else {
-            render_scene("lab", &scenes::LAB, scenes::LAB_CAMERA, &[Method::DEFAULT])
+        let mut ok = match selection {
+            Selection::All => {
+                let mut renders = Renders {
+                    methods: &Method::ALL,
+                    failed: false,
+                };
+                scenes::for_each(&mut renders);
+                !renders.failed
+            }
+            Selection::Quick => render_scene("lab", &scenes::LAB, scenes::LAB_CAMERA, &[Method::DEFAULT]),
+            Selection::Features => true,
         };
-        let ok = render_bands("lab", &scenes::LAB, scenes::LAB_CAMERA, Method::DEFAULT) && ok;
+        if selection != Selection::Quick {
+            let mut renders = DefaultRenders { failed: false };
+            scenes::for_each_feature(&mut renders);
+            ok &= !renders.failed;
+        }
+        if selection != Selection::Features {
+            ok = render_bands("lab", &scenes::LAB, scenes::LAB_CAMERA, Method::DEFAULT) && ok;
+        }
         if ok {
             hprintln!("result ok");
             debug::exit(debug::EXIT_SUCCESS);

@@ -203,6 +203,15 @@ pub const TIMINGS: &[Timing] = &[
         source: "Table 3-1: Table branch TBB/TBH: 2 + P",
     },
     Timing {
+        mnemonics: &["mrs", "msr"],
+        base: 2,
+        shape: Shape::Fixed,
+        kind: Kind::Integer,
+        source: "Table 3-1: Move to register from special register MRS, to special register from \
+                 register MSR: 1 or 2; the model takes 2 (compiled code saves and restores the flags \
+                 with them around FPU compares, once per frame in the plane set-up)",
+    },
+    Timing {
         mnemonics: &["it"],
         base: 1,
         shape: Shape::Fixed,

@@ -1,12 +1,17 @@
 //! The measurement every QEMU firmware example runs (`qemu_cortex_m4`, `qemu_cortex_m0`,
 //! `qemu_rv32`): a platform supplies an instruction counter, a stack painter and an
-//! output channel ([`Platform`]); this module renders every standard scene with every
-//! method of `Method::ALL` into a [`PixelHash`] at 240×240 and prints one line per scene
-//! and method in the format `examples/common/qemu_output.rs` parses:
+//! output channel ([`Platform`]); this module renders every standard Lab #1 scene with
+//! every method of `Method::ALL` into a [`PixelHash`] at 240×240 and prints one line per
+//! scene and method in the format `examples/common/qemu_output.rs` parses:
 //!
 //! ```text
 //! hash lab incremental/robust/exact 0x0123456789abcdef pixels 57600 instr 3456789 ipp 60.0 stack 312
 //! ```
+//!
+//! [`Run::feature_scenes`] (the Cortex-M4F only) measures the scenes with lights, a
+//! floor and mirrors the same way, with the methods and options of
+//! `scenes::FEATURE_RENDERS`, the options' suffix appended to the method
+//! (`hash shadows direct/auto/exact+literal …`).
 //!
 //! - `instr`: instructions executed by the render, from the platform's counter minus
 //!   what an empty measurement counts. Each run first checks the counter on loops of
@@ -25,7 +30,7 @@ use core::fmt;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use embedded_raytracer::{hash::PixelHash, math, Camera, CameraParams, Method, Render, Scene};
+use embedded_raytracer::{hash::PixelHash, math, Camera, CameraParams, Method, Options, Render, Scene};
 
 use crate::scenes;
 
@@ -66,8 +71,29 @@ pub trait Platform {
 /// The render under test, never inlined so that its whole frame lies below the
 /// measuring function's stack pointer.
 #[inline(never)]
-fn render<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, target: &mut PixelHash) {
+fn render<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    method: Method,
+    target: &mut PixelHash,
+) {
     let Ok(()) = Render::new(scene, camera).with_method(method).draw(target);
+}
+
+/// The render of a scene with lights, planes or mirrors under test, with its options;
+/// never inlined, like [`render`].
+#[inline(never)]
+fn render_features<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    method: Method,
+    options: Options,
+    target: &mut PixelHash,
+) {
+    let Ok(()) = Render::new(scene, camera)
+        .with_method(method)
+        .with_options(options)
+        .draw(target);
 }
 
 /// The sink alone, for scale: the same `PixelHash` fed 240 rows of 240 pixels through
@@ -122,9 +148,31 @@ pub struct Run<P: Platform> {
     failures: u32,
 }
 
-impl<P: Platform> scenes::EachScene for Run<P> {
-    fn scene<const N: usize>(&mut self, name: &'static str, scene: &'static Scene<N>, camera: CameraParams) {
-        self.measure_scene(name, scene, camera);
+/// The Lab #1 scenes ([`Run::every_scene`]): every method.
+struct Lab1<'r, P: Platform>(&'r mut Run<P>);
+
+impl<P: Platform> scenes::EachScene for Lab1<'_, P> {
+    fn scene<const N: usize, const L: usize, const PL: usize, const D: usize>(
+        &mut self,
+        name: &'static str,
+        scene: &'static Scene<N, L, PL, D>,
+        camera: CameraParams,
+    ) {
+        self.0.measure_scene(name, scene, camera);
+    }
+}
+
+/// The scenes with lights, a floor and mirrors ([`Run::feature_scenes`]).
+struct Features<'r, P: Platform>(&'r mut Run<P>);
+
+impl<P: Platform> scenes::EachScene for Features<'_, P> {
+    fn scene<const N: usize, const L: usize, const PL: usize, const D: usize>(
+        &mut self,
+        name: &'static str,
+        scene: &'static Scene<N, L, PL, D>,
+        camera: CameraParams,
+    ) {
+        self.0.measure_feature_scene(name, scene, camera);
     }
 }
 
@@ -244,16 +292,68 @@ impl<P: Platform> Run<P> {
         ));
     }
 
-    /// Every method on one scene at 240×240: hash, pixels, instructions, stack.
-    pub fn measure_scene<const N: usize>(&mut self, name: &str, scene: &Scene<N>, params: CameraParams) {
-        let camera = match (CameraParams { size: SIZE, ..params }).build() {
-            Ok(camera) => camera,
+    /// The scene's camera at 240×240, or `None` (after a failure line) if it cannot be
+    /// built.
+    fn camera(&mut self, name: &str, params: CameraParams) -> Option<Camera> {
+        match (CameraParams { size: SIZE, ..params }).build() {
+            Ok(camera) => Some(camera),
             Err(e) => {
                 self.platform.print(format_args!("camera {}: {:?}", name, e));
-                return self.fail("camera");
+                self.fail("camera");
+                None
             }
-        };
+        }
+    }
+
+    /// Prints one render's line, `hash NAME METHODSUFFIX …`, and fails the run on a
+    /// wrong pixel count, two passes that differ, or a stack overflow.
+    #[allow(clippy::too_many_arguments)]
+    fn report(
+        &mut self,
+        name: &str,
+        method: Method,
+        suffix: &str,
+        hash: &PixelHash,
+        again: &PixelHash,
+        instr: u64,
+        stack: Option<usize>,
+    ) {
         let expected_pixels = u64::from(SIZE.width) * u64::from(SIZE.height);
+        let pixels = hash.pixels();
+        let ipp10 = ipp10(instr, pixels);
+        self.platform.print(format_args!(
+            "hash {} {}{} {:#018x} pixels {} instr {} ipp {}.{} stack {}",
+            name,
+            method,
+            suffix,
+            hash.hash(),
+            pixels,
+            instr,
+            ipp10 / 10,
+            ipp10 % 10,
+            stack.unwrap_or(0)
+        ));
+        if pixels != expected_pixels {
+            self.fail("pixel count");
+        }
+        if again != hash {
+            self.fail("the two passes differ");
+        }
+        if stack.is_none() {
+            self.fail("stack overflow: the render reached the bottom of the stack region");
+        }
+    }
+
+    /// Every method on one Lab #1 scene at 240×240: hash, pixels, instructions, stack.
+    pub fn measure_scene<const N: usize, const L: usize, const PL: usize, const D: usize>(
+        &mut self,
+        name: &str,
+        scene: &Scene<N, L, PL, D>,
+        params: CameraParams,
+    ) {
+        let Some(camera) = self.camera(name, params) else {
+            return;
+        };
         for method in Method::ALL {
             // Timed pass (the counter's interrupt on).
             let mut hash = PixelHash::new(SIZE);
@@ -265,34 +365,45 @@ impl<P: Platform> Run<P> {
             let mut again = PixelHash::new(SIZE);
             let stack = stack_of(&self.platform, || render(scene, &camera, method, &mut again));
             self.platform.quiet(false);
-            let pixels = hash.pixels();
-            let ipp10 = ipp10(instr, pixels);
-            self.platform.print(format_args!(
-                "hash {} {} {:#018x} pixels {} instr {} ipp {}.{} stack {}",
-                name,
-                method,
-                hash.hash(),
-                pixels,
-                instr,
-                ipp10 / 10,
-                ipp10 % 10,
-                stack.unwrap_or(0)
-            ));
-            if pixels != expected_pixels {
-                self.fail("pixel count");
-            }
-            if again != hash {
-                self.fail("the two passes differ");
-            }
-            if stack.is_none() {
-                self.fail("stack overflow: the render reached the bottom of the stack region");
-            }
+            self.report(name, method, "", &hash, &again, instr, stack);
         }
     }
 
-    /// Every standard scene (`examples/common/scenes.rs`), every method.
+    /// The renders of `scenes::FEATURE_RENDERS` (method and options) on one scene with
+    /// lights, planes or mirrors, measured as [`Run::measure_scene`] measures. The two
+    /// passes call the render directly, as there: the stack figure is counted from
+    /// inside `stack_of`, whose frame holds the closure.
+    pub fn measure_feature_scene<const N: usize, const L: usize, const PL: usize, const D: usize>(
+        &mut self,
+        name: &str,
+        scene: &Scene<N, L, PL, D>,
+        params: CameraParams,
+    ) {
+        let Some(camera) = self.camera(name, params) else {
+            return;
+        };
+        for (method, suffix, options) in scenes::FEATURE_RENDERS {
+            let mut hash = PixelHash::new(SIZE);
+            let instr = self.timed(|| render_features(scene, &camera, method, options, &mut hash));
+            self.platform.quiet(true);
+            let mut again = PixelHash::new(SIZE);
+            let stack = stack_of(&self.platform, || {
+                render_features(scene, &camera, method, options, &mut again)
+            });
+            self.platform.quiet(false);
+            self.report(name, method, suffix, &hash, &again, instr, stack);
+        }
+    }
+
+    /// Every standard Lab #1 scene (`examples/common/scenes.rs`' `for_each`), every
+    /// method.
     pub fn every_scene(&mut self) {
-        scenes::for_each(self);
+        scenes::for_each(&mut Lab1(self));
+    }
+
+    /// The standard scenes with lights, a floor and mirrors (`scenes::for_each_feature`).
+    pub fn feature_scenes(&mut self) {
+        scenes::for_each_feature(&mut Features(self));
     }
 
     /// Prints the verdict and exits QEMU with it.

@@ -1,13 +1,17 @@
 //! The standard scenes (`scenes/*.toml`) as `static`s for firmware, which has no file
-//! system. The numbers are copied from the TOML files; `tests/firmware_scenes.rs`
-//! loads every file and fails if any number here differs, so the two cannot diverge.
+//! system: the five Lab #1 scenes ([`for_each`]) and the two with lights, a floor and
+//! mirrors ([`for_each_feature`]), each in the scene type of its exact capacities. The
+//! numbers are copied from the TOML files; `tests/firmware_scenes.rs` loads every file
+//! and fails if any number here differs, so the two cannot diverge.
 //!
 //! Included with `#[path]` by the firmware examples and the host tests.
 
 #![allow(dead_code)]
 
 use embedded_graphics::{geometry::Size, pixelcolor::Rgb888};
-use embedded_raytracer::{CameraParams, Scene, Sphere, Vec3};
+use embedded_raytracer::{
+    CameraParams, Light, Material, Method, Options, Plane, Scene, SecondaryOrigin, Settings, Sphere, Vec3,
+};
 
 const fn sphere(c: [f32; 3], radius: f32, color: [u8; 3]) -> Sphere {
     Sphere::new(
@@ -15,6 +19,20 @@ const fn sphere(c: [f32; 3], radius: f32, color: [u8; 3]) -> Sphere {
         radius,
         Rgb888::new(color[0], color[1], color[2]),
     )
+}
+
+/// A sphere with a material: `specular`, `shininess`, `reflect` as in the file (the
+/// loader's defaults where the file gives none: 0, 32, 0).
+const fn lit_sphere(c: [f32; 3], radius: f32, color: [u8; 3], material: [f32; 3]) -> Sphere {
+    sphere(c, radius, color).with_material(Material::new(material[0], material[1], material[2]))
+}
+
+const fn vec3(v: [f32; 3]) -> Vec3 {
+    Vec3::new(v[0], v[1], v[2])
+}
+
+const fn rgb(c: [u8; 3]) -> Rgb888 {
+    Rgb888::new(c[0], c[1], c[2])
 }
 
 const fn camera(
@@ -185,11 +203,80 @@ pub const CROWD_CAMERA: CameraParams = camera(
     [320, 240],
 );
 
-/// Work done on each standard scene, whatever its sphere capacity.
+/// `scenes/shadows.toml`: 4 spheres, 2 lights, 1 plane, no mirror (`D = 0`: no
+/// reflection loop; `max_depth` is the type's default, 0, as the loader gives it).
+pub static SHADOWS: Scene<4, 2, 1, 0> = Scene::from_arrays(
+    [
+        lit_sphere([0.0, 1.0, 0.0], 1.0, [230, 60, 50], [0.6, 48.0, 0.0]),
+        lit_sphere([-2.0, 0.6, 0.9], 0.6, [60, 200, 90], [0.3, 16.0, 0.0]),
+        lit_sphere([1.6, 1.45, 0.5], 0.5, [70, 110, 240], [0.8, 96.0, 0.0]),
+        lit_sphere([0.9, 0.35, 2.0], 0.35, [240, 210, 60], [0.0, 32.0, 0.0]),
+    ],
+    [
+        Light::directional(vec3([1.0, -1.4, -0.6]), 0.75),
+        Light::point(vec3([3.0, 3.5, 3.5]), 0.45),
+    ],
+    [
+        Plane::new(vec3([0.0, 0.0, 0.0]), vec3([0.0, 1.0, 0.0]), rgb([225, 225, 215]))
+            .with_checker(rgb([70, 70, 80]), 1.0),
+    ],
+    Rgb888::new(24, 34, 56),
+    Settings {
+        ambient: 0.12,
+        max_depth: 0,
+        shadows: true,
+    },
+);
+/// The camera of `scenes/shadows.toml`.
+pub const SHADOWS_CAMERA: CameraParams = camera(
+    [0.0, 4.0, 6.8],
+    [0.0, 0.5, 0.3],
+    [0.0, 1.0, 0.0],
+    45.0,
+    [240, 240],
+);
+
+/// `scenes/mirrors.toml`: 5 spheres, 1 light, 1 plane, reflections 3 deep.
+pub static MIRRORS: Scene<5, 1, 1, 3> = Scene::from_arrays(
+    [
+        lit_sphere([-0.7, 1.1, 0.0], 1.1, [200, 200, 210], [0.9, 128.0, 0.85]),
+        lit_sphere([1.35, 0.7, 0.5], 0.7, [210, 190, 150], [0.8, 96.0, 0.7]),
+        lit_sphere([0.6, 0.4, 2.1], 0.4, [220, 50, 60], [0.6, 48.0, 0.25]),
+        lit_sphere([-2.3, 0.5, 1.4], 0.5, [50, 120, 230], [0.6, 48.0, 0.25]),
+        lit_sphere([1.0, 0.45, -2.0], 0.45, [60, 200, 100], [0.5, 32.0, 0.2]),
+    ],
+    [Light::directional(vec3([-0.8, -1.5, -1.0]), 0.9)],
+    [
+        Plane::new(vec3([0.0, 0.0, 0.0]), vec3([0.0, 1.0, 0.0]), rgb([230, 230, 230]))
+            .with_checker(rgb([40, 40, 50]), 1.0)
+            .with_material(Material::new(0.0, 32.0, 0.15)),
+    ],
+    Rgb888::new(110, 150, 210),
+    Settings {
+        ambient: 0.15,
+        max_depth: 3,
+        shadows: true,
+    },
+);
+/// The camera of `scenes/mirrors.toml`.
+pub const MIRRORS_CAMERA: CameraParams = camera(
+    [0.0, 3.2, 6.5],
+    [0.0, 0.7, 0.2],
+    [0.0, 1.0, 0.0],
+    45.0,
+    [240, 240],
+);
+
+/// Work done on each standard scene, whatever its type.
 pub trait EachScene {
     /// Called once per standard scene with its name (the file's stem), the scene and
     /// its camera.
-    fn scene<const N: usize>(&mut self, name: &'static str, scene: &'static Scene<N>, camera: CameraParams);
+    fn scene<const N: usize, const L: usize, const P: usize, const D: usize>(
+        &mut self,
+        name: &'static str,
+        scene: &'static Scene<N, L, P, D>,
+        camera: CameraParams,
+    );
 }
 
 /// Calls `work` on every standard scene, in the order of every table (the order of
@@ -201,3 +288,37 @@ pub fn for_each(work: &mut impl EachScene) {
     work.scene("drift", &DRIFT, DRIFT_CAMERA);
     work.scene("crowd", &CROWD, CROWD_CAMERA);
 }
+
+/// Calls `work` on every standard scene with lights, a floor and mirrors, in the order
+/// of every table (`examples/common/standard.rs`' `FEATURE_SCENES`).
+pub fn for_each_feature(work: &mut impl EachScene) {
+    work.scene("shadows", &SHADOWS, SHADOWS_CAMERA);
+    work.scene("mirrors", &MIRRORS, MIRRORS_CAMERA);
+}
+
+/// The renders measured on the scenes of [`for_each_feature`] (firmware and host
+/// alike), each `(method, label suffix, options)` and labelled `METHOD` + suffix:
+///
+/// - `direct/auto/exact`: the default method and options;
+/// - `direct/auto/exact+literal`: the default method with the literal options (no span
+///   culling, closest-hit shadow rays: every object tested for every ray). Not the
+///   default's pixels: the forward-differenced test anchors at span starts;
+/// - `world-space/algebraic/exact+literal`: the seed's method with the literal options,
+///   the benchmarks' baseline;
+/// - `direct/auto/exact+epsilon`: the default with the textbook fixed epsilon for
+///   secondary rays (`SecondaryOrigin::TEXTBOOK`).
+pub const FEATURE_RENDERS: [(Method, &str, Options); 4] = [
+    (Method::DEFAULT, "", Options::DEFAULT),
+    (Method::DEFAULT, "+literal", LITERAL_OPTIONS),
+    (Method::LITERAL, "+literal", LITERAL_OPTIONS),
+    (
+        Method::DEFAULT,
+        "+epsilon",
+        Options::DEFAULT.with_secondary(SecondaryOrigin::TEXTBOOK),
+    ),
+];
+
+/// Every object tested for every ray, closest-hit shadow rays.
+const LITERAL_OPTIONS: Options = Options::DEFAULT
+    .with_span_culling(false)
+    .with_shadow_any_hit(false);

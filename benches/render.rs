@@ -21,8 +21,10 @@
 //! cargo bench -- 'shadows/|mirrors/|features/'
 //! ```
 //!
-//! The tables at the end use, per benchmark, the median over criterion's samples (and
-//! warm-up calls) of the time per iteration: robust to bursts of load on a shared machine.
+//! The Lab #1 table at the end uses, per benchmark, the median over criterion's samples
+//! (and warm-up calls) of the time per iteration: robust to bursts of load on a shared
+//! machine. The feature tables come from interleaved rounds after criterion's runs
+//! (`interleave`): a ratio is taken between frames drawn moments apart.
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;
@@ -91,9 +93,19 @@ fn main() {
         group.finish();
     }
 
-    for name in FEATURE_SCENES {
-        let file = standard::load_full(name);
-        let mut group = c.benchmark_group(name);
+    let files = FEATURE_SCENES.map(|name| (name, standard::load_full(name)));
+    let file = standard::load_full(SERIES_SCENE);
+    let camera = &file.camera;
+    let size = camera.size();
+    let spheres: Scene<MAX_SPHERES> = stage(&file, Stage::Spheres);
+    let floor: Scene<MAX_SPHERES, 0, MAX_PLANES> = stage(&file, Stage::Floor);
+    let lights: Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES> = stage(&file, Stage::Lights);
+    let shadows: Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES> = stage(&file, Stage::Shadows);
+    let mirrors: Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH> = stage(&file, Stage::Mirrors);
+    // Every feature benchmark also goes into the interleaved rounds (see `interleave`).
+    let mut frames: Vec<Frame<'_>> = Vec::new();
+    for (name, file) in &files {
+        let mut group = c.benchmark_group(*name);
         let cases = [
             (DEFAULT, Method::DEFAULT, Options::DEFAULT),
             (LITERAL, Method::DEFAULT, LITERAL_OPTIONS),
@@ -104,28 +116,36 @@ fn main() {
                 .with_method(method)
                 .with_options(options);
             bench(&mut group, name, label, &render, &file.camera);
+            frames.push(Frame::new(name, label, render, file.camera.size()));
         }
         group.finish();
     }
 
-    let file = standard::load_full(SERIES_SCENE);
-    let camera = &file.camera;
-    let spheres: Scene<MAX_SPHERES> = stage(&file, Stage::Spheres);
-    let floor: Scene<MAX_SPHERES, 0, MAX_PLANES> = stage(&file, Stage::Floor);
-    let lights: Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES> = stage(&file, Stage::Lights);
-    let shadows: Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES> = stage(&file, Stage::Shadows);
-    let mirrors: Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH> = stage(&file, Stage::Mirrors);
     let mut group = c.benchmark_group(FEATURES);
     let [a, b, cc, d, e] = STEPS.map(|(label, _)| label);
-    bench(&mut group, FEATURES, a, &Render::new(&spheres, camera), camera);
-    bench(&mut group, FEATURES, b, &Render::new(&floor, camera), camera);
-    bench(&mut group, FEATURES, cc, &Render::new(&lights, camera), camera);
-    bench(&mut group, FEATURES, d, &Render::new(&shadows, camera), camera);
-    bench(&mut group, FEATURES, e, &Render::new(&mirrors, camera), camera);
+    let (ra, rb, rc) = (
+        Render::new(&spheres, camera),
+        Render::new(&floor, camera),
+        Render::new(&lights, camera),
+    );
+    let (rd, re) = (Render::new(&shadows, camera), Render::new(&mirrors, camera));
+    bench(&mut group, FEATURES, a, &ra, camera);
+    bench(&mut group, FEATURES, b, &rb, camera);
+    bench(&mut group, FEATURES, cc, &rc, camera);
+    bench(&mut group, FEATURES, d, &rd, camera);
+    bench(&mut group, FEATURES, e, &re, camera);
     group.finish();
+    frames.extend([
+        Frame::new(FEATURES, a, ra, size),
+        Frame::new(FEATURES, b, rb, size),
+        Frame::new(FEATURES, cc, rc, size),
+        Frame::new(FEATURES, d, rd, size),
+        Frame::new(FEATURES, e, re, size),
+    ]);
 
     c.final_summary();
     print_ratios();
+    print_feature_ratios(&interleave(&mut frames));
 }
 
 /// Times `render` drawing a whole frame into an Rgb565 buffer, recording ns/pixel of
@@ -159,6 +179,161 @@ fn bench<const N: usize, const L: usize, const P: usize, const D: usize>(
             elapsed
         })
     });
+}
+
+/// One frame of one benchmark, drawn on demand for the interleaved rounds.
+struct Frame<'a> {
+    group: &'static str,
+    label: &'static str,
+    pixels: u64,
+    /// Draws the frame into its own buffer; returns the time it took.
+    draw: Box<dyn FnMut() -> Duration + 'a>,
+}
+
+impl<'a> Frame<'a> {
+    fn new<const N: usize, const L: usize, const P: usize, const D: usize>(
+        group: &'static str,
+        label: &'static str,
+        render: Render<'a, N, Rgb565, L, P, D>,
+        size: Size,
+    ) -> Self {
+        let pixels = u64::from(size.width) * u64::from(size.height);
+        let mut buf = vec![Rgb565::BLACK; pixels as usize];
+        let draw = move || {
+            let start = Instant::now();
+            let mut target = SliceTarget { buf: &mut buf, size };
+            let Ok(()) = render.draw(&mut target);
+            std::hint::black_box(&target.buf);
+            start.elapsed()
+        };
+        Self {
+            group,
+            label,
+            pixels,
+            draw: Box::new(draw),
+        }
+    }
+}
+
+/// Rounds of the interleaved measurement.
+const ROUNDS: usize = 31;
+/// How long one benchmark's turn in a round lasts at least: short frames are drawn
+/// several times in a turn, so that no turn is a single scheduler time slice.
+const TURN: Duration = Duration::from_millis(5);
+
+/// Per benchmark `(group, label)` that criterion ran (its filter decides), ns/pixel in
+/// each of [`ROUNDS`] rounds; each round gives every such benchmark one turn, one after
+/// the other, of as many frames as criterion's median says fill [`TURN`]. A ratio of two benchmarks taken within each round, then its median
+/// over the rounds, compares frames drawn moments apart: on a shared machine whose
+/// load changes over seconds that is far steadier than a ratio of two criterion runs
+/// made a second or more apart.
+fn interleave(frames: &mut [Frame<'_>]) -> BTreeMap<(String, String), Vec<f64>> {
+    // Frames per turn; 0 for a benchmark criterion did not run.
+    let reps: Vec<u32> = frames
+        .iter()
+        .map(|f| {
+            median(f.group, f.label).map_or(0, |ns| {
+                let frame_ns = ns * f.pixels as f64;
+                (TURN.as_nanos() as f64 / frame_ns).ceil().max(1.0) as u32
+            })
+        })
+        .collect();
+    let mut rounds: BTreeMap<(String, String), Vec<f64>> = BTreeMap::new();
+    for _ in 0..ROUNDS {
+        for (frame, &reps) in frames.iter_mut().zip(&reps).filter(|(_, &reps)| reps > 0) {
+            let elapsed: Duration = (0..reps).map(|_| (frame.draw)()).sum();
+            let ns = elapsed.as_nanos() as f64 / (u64::from(reps) * frame.pixels) as f64;
+            rounds
+                .entry((frame.group.to_string(), frame.label.to_string()))
+                .or_default()
+                .push(ns);
+        }
+    }
+    rounds
+}
+
+/// The median and the quartiles of `v` (sorted in place).
+fn quartiles(v: &mut [f64]) -> (f64, f64, f64) {
+    v.sort_by(f64::total_cmp);
+    let at = |q: usize| v[(v.len() - 1) * q / 4];
+    (at(2), at(1), at(3))
+}
+
+/// Per round, `rounds[num] / rounds[den]`: median and quartiles over the rounds.
+fn round_ratio(
+    rounds: &BTreeMap<(String, String), Vec<f64>>,
+    group: &str,
+    num: &str,
+    den: &str,
+) -> Option<(f64, f64, f64)> {
+    let get = |label: &str| rounds.get(&(group.to_string(), label.to_string()));
+    let (n, d) = (get(num)?, get(den)?);
+    let mut r: Vec<f64> = n.iter().zip(d).map(|(n, d)| n / d).collect();
+    Some(quartiles(&mut r))
+}
+
+/// The median ns/pixel of `label` over the rounds.
+fn round_ns(rounds: &BTreeMap<(String, String), Vec<f64>>, group: &str, label: &str) -> Option<f64> {
+    let mut v = rounds.get(&(group.to_string(), label.to_string()))?.clone();
+    Some(quartiles(&mut v).0)
+}
+
+/// The feature scenes' speed-up over their literal tracing and the feature series'
+/// cost relative to (a), from the interleaved rounds.
+fn print_feature_ratios(rounds: &BTreeMap<(String, String), Vec<f64>>) {
+    if rounds.is_empty() {
+        return;
+    }
+    println!(
+        "
+Interleaved: {ROUNDS} rounds, each giving every benchmark below a turn of at least {} ms; \
+ns/pixel is the median over the rounds, a ratio the median (and quartiles) over the rounds of the \
+ratio within a round",
+        TURN.as_millis()
+    );
+    for scene in FEATURE_SCENES {
+        let Some(default) = round_ns(rounds, scene, DEFAULT) else {
+            continue;
+        };
+        println!(
+            "
+{scene}: {DEFAULT} = {} (span culling, any-hit shadow rays) {default:.2} ns/pixel",
+            Method::DEFAULT
+        );
+        println!("  traced literally (no culling, closest-hit shadow rays):");
+        println!(
+            "  {:14} {:28} {:>10} {:>9}  quartiles",
+            "", "method", "ns/pixel", "speed-up"
+        );
+        for (label, method) in [(LITERAL, Method::DEFAULT), (LITERAL_SEED, Method::LITERAL)] {
+            if let (Some(v), Some((r, lo, hi))) = (
+                round_ns(rounds, scene, label),
+                round_ratio(rounds, scene, label, DEFAULT),
+            ) {
+                let method = method.to_string();
+                println!("  {label:14} {method:28} {v:10.2} {r:8.2}x  {lo:.2}–{hi:.2}");
+            }
+        }
+    }
+    if round_ns(rounds, FEATURES, STEPS[0].0).is_none() {
+        return;
+    }
+    println!(
+        "
+{FEATURES}: the {SERIES_SCENE} scene's camera, one feature added at a time (default method)"
+    );
+    println!(
+        "  {:12} {:30} {:>10} {:>9}  quartiles",
+        "step", "scene", "ns/pixel", "× (a)"
+    );
+    for (label, what) in STEPS {
+        if let (Some(v), Some((r, lo, hi))) = (
+            round_ns(rounds, FEATURES, label),
+            round_ratio(rounds, FEATURES, label, STEPS[0].0),
+        ) {
+            println!("  {label:12} {what:30} {v:10.2} {r:8.2}x  {lo:.2}–{hi:.2}");
+        }
+    }
 }
 
 /// A step of the feature-cost series.
@@ -228,9 +403,11 @@ fn median(scene: &str, label: &str) -> Option<f64> {
     })
 }
 
-/// ns/pixel and the ratios: per Lab #1 scene baseline/method (how many times faster),
-/// per feature scene literal/default, and the feature series' step/(a).
+/// ns/pixel and every method's speed-up (baseline/method) on the Lab #1 scenes.
 fn print_ratios() {
+    if SCENES.iter().all(|scene| median(scene, BASELINE).is_none()) {
+        return;
+    }
     println!("\nns/pixel and speed-up over the literal baseline (same run; median of the timed calls)");
     for scene in SCENES {
         let Some(base) = median(scene, BASELINE) else {
@@ -250,35 +427,6 @@ fn print_ratios() {
                 };
                 println!("  {label:34} {v:10.2} {:8.2}x{mark}", base / v);
             }
-        }
-    }
-
-    for scene in FEATURE_SCENES {
-        let Some(default) = median(scene, DEFAULT) else {
-            continue;
-        };
-        println!(
-            "\n{scene}: {DEFAULT} = {} (span culling, any-hit shadow rays) {default:.2} ns/pixel",
-            Method::DEFAULT
-        );
-        println!("  traced literally (no culling, closest-hit shadow rays):");
-        println!("  {:14} {:28} {:>10} {:>9}", "", "method", "ns/pixel", "speed-up");
-        for (label, method) in [(LITERAL, Method::DEFAULT), (LITERAL_SEED, Method::LITERAL)] {
-            if let Some(v) = median(scene, label) {
-                let method = method.to_string();
-                println!("  {label:14} {method:28} {v:10.2} {:8.2}x", v / default);
-            }
-        }
-    }
-
-    let Some(base) = median(FEATURES, STEPS[0].0) else {
-        return;
-    };
-    println!("\n{FEATURES}: the {SERIES_SCENE} scene's camera, one feature added at a time (default method)");
-    println!("  {:12} {:30} {:>10} {:>9}", "step", "scene", "ns/pixel", "× (a)");
-    for (label, what) in STEPS {
-        if let Some(v) = median(FEATURES, label) {
-            println!("  {label:12} {what:30} {v:10.2} {:8.2}x", v / base);
         }
     }
 }

@@ -223,10 +223,10 @@ const TURN: Duration = Duration::from_millis(5);
 
 /// Per benchmark `(group, label)` that criterion ran (its filter decides), ns/pixel in
 /// each of [`ROUNDS`] rounds; each round gives every such benchmark one turn, one after
-/// the other, of as many frames as criterion's median says fill [`TURN`]. A ratio of two benchmarks taken within each round, then its median
-/// over the rounds, compares frames drawn moments apart: on a shared machine whose
-/// load changes over seconds that is far steadier than a ratio of two criterion runs
-/// made a second or more apart.
+/// the other, of as many frames as criterion's median says fill [`TURN`]. A ratio of
+/// two benchmarks taken within each round, then its median over the rounds, compares
+/// frames drawn moments apart: on a shared machine whose load changes over seconds
+/// that is far steadier than a ratio of two criterion runs made a second or more apart.
 fn interleave(frames: &mut [Frame<'_>]) -> BTreeMap<(String, String), Vec<f64>> {
     // Frames per turn; 0 for a benchmark criterion did not run.
     let reps: Vec<u32> = frames
@@ -285,8 +285,7 @@ fn print_feature_ratios(rounds: &BTreeMap<(String, String), Vec<f64>>) {
         return;
     }
     println!(
-        "
-Interleaved: {ROUNDS} rounds, each giving every benchmark below a turn of at least {} ms; \
+        "\nInterleaved: {ROUNDS} rounds, each giving every benchmark below a turn of at least {} ms; \
 ns/pixel is the median over the rounds, a ratio the median (and quartiles) over the rounds of the \
 ratio within a round",
         TURN.as_millis()
@@ -296,8 +295,7 @@ ratio within a round",
             continue;
         };
         println!(
-            "
-{scene}: {DEFAULT} = {} (span culling, any-hit shadow rays) {default:.2} ns/pixel",
+            "\n{scene}: {DEFAULT} = {} (span culling, any-hit shadow rays) {default:.2} ns/pixel",
             Method::DEFAULT
         );
         println!("  traced literally (no culling, closest-hit shadow rays):");
@@ -318,10 +316,7 @@ ratio within a round",
     if round_ns(rounds, FEATURES, STEPS[0].0).is_none() {
         return;
     }
-    println!(
-        "
-{FEATURES}: the {SERIES_SCENE} scene's camera, one feature added at a time (default method)"
-    );
+    println!("\n{FEATURES}: the {SERIES_SCENE} scene's camera, one feature added at a time (default method)");
     println!(
         "  {:12} {:30} {:>10} {:>9}  quartiles",
         "step", "scene", "ns/pixel", "× (a)"

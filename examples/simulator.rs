@@ -17,9 +17,9 @@
 //! the textbook fixed epsilon at 1e-3, 1e-6 and 1e-1 scene units: [`SECONDARY`]);
 //! `D` toggles the difference view (pixels where the shown frame differs from the
 //! `direct/robust/exact` render with the convex origin, through the same display
-//! model, in magenta); `Tab`/
-//! `Shift+Tab` or `1`–`9` pick the display model; `B` switches the Bayer matrix 8×8/4×4;
-//! `T` switches the OLED theme (blue/white) of the binary models; `Esc`/`Q` quits.
+//! model, in magenta); `Tab`/`Shift+Tab` or `1`–`9` pick the display model; `B`
+//! switches the Bayer matrix 8×8/4×4; `T` switches the OLED theme (blue/white) of the
+//! binary models; `Esc`/`Q` quits.
 //!
 //! A scene file without lights, planes or mirrors is drawn through the spheres-only
 //! type `Scene<N>` (the Lab #1 loop), one with them through the full type with the
@@ -74,9 +74,8 @@ const REFERENCE: Method = Method::new(Stepping::Direct, SphereTest::Robust, Sqrt
 
 /// The secondary-ray origins the `E` key cycles through: the default, the textbook
 /// epsilon, one below the hit points' rounding error at the standard scenes'
-/// coordinates (shadow acne), one large enough for rays that start near where a sphere
-/// rests on the floor to skip past the surface they should meet (light leaks, wrong
-/// reflections).
+/// coordinates (shadow acne), one large for them (a ray that starts near where a
+/// sphere rests on the floor can skip past the surface it should meet).
 const SECONDARY: [SecondaryOrigin; 4] = [
     SecondaryOrigin::Convex,
     SecondaryOrigin::TEXTBOOK,
@@ -229,8 +228,8 @@ impl Loaded {
         Ok((scene, params))
     }
 
-    /// Whether the scene can trace shadow or reflection rays (the secondary origin
-    /// matters).
+    /// Whether the scene is drawn through the full type (lights, planes or mirrors):
+    /// the one whose shadow and reflection rays the secondary origin decides.
     fn has_features(&self) -> bool {
         matches!(self, Loaded::Full(_))
     }

@@ -2,7 +2,8 @@
 //!
 //! ```text
 //! cargo run --release --example render -- scenes/lab.toml --output lab.png \
-//!     [--stepping …] [--sphere-test …] [--sqrt …] [--force]   # --help lists the choices
+//!     [--stepping …] [--sphere-test …] [--sqrt …] [--secondary convex|epsilon:VALUE] \
+//!     [--force]   # --help lists the choices
 //! ```
 //!
 //! A scene file without lights, planes or mirrors is drawn through the spheres-only type
@@ -37,7 +38,7 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use embedded_graphics::{pixelcolor::Rgb888, prelude::*, primitives::Rectangle};
-use embedded_raytracer::{scene_file, Method, Render};
+use embedded_raytracer::{scene_file, Method, Options, Render, SecondaryOrigin};
 
 #[path = "common/standard.rs"]
 mod standard;
@@ -46,10 +47,41 @@ use standard::FullSceneFile;
 /// The usage line; the method flags list every choice from the method's own tables.
 fn usage() -> String {
     format!(
-        "usage: render SCENE.toml [--output OUT.png] [--force] {} (default method {})",
+        "usage: render SCENE.toml [--output OUT.png] [--force] {} [--secondary convex|epsilon:VALUE] \
+(default method {}, secondary {})",
         standard::method_flags(),
-        Method::DEFAULT
+        Method::DEFAULT,
+        secondary_name(Options::DEFAULT.secondary)
     )
+}
+
+/// `--secondary`'s value: `convex` or `epsilon:VALUE` with a positive finite VALUE.
+fn parse_secondary(text: &str) -> Result<SecondaryOrigin, String> {
+    if text == "convex" {
+        return Ok(SecondaryOrigin::Convex);
+    }
+    let Some(value) = text.strip_prefix("epsilon:") else {
+        return Err(format!(
+            "--secondary: expected convex or epsilon:VALUE, got `{text}`"
+        ));
+    };
+    let eps: f32 = value
+        .parse()
+        .map_err(|_| format!("--secondary: epsilon `{value}` is not a number"))?;
+    if !(eps.is_finite() && eps > 0.0) {
+        return Err(format!(
+            "--secondary: epsilon must be a positive finite number, got `{value}`"
+        ));
+    }
+    Ok(SecondaryOrigin::Epsilon(eps))
+}
+
+/// The `--secondary` value that selects `secondary` (`convex`, `epsilon:0.001`).
+fn secondary_name(secondary: SecondaryOrigin) -> String {
+    match secondary {
+        SecondaryOrigin::Convex => "convex".to_string(),
+        SecondaryOrigin::Epsilon(eps) => format!("epsilon:{eps}"),
+    }
 }
 
 /// The rest of `--help` after the usage line. The worst case was measured with
@@ -63,6 +95,10 @@ mirrors (scenes/shadows.toml, scenes/mirrors.toml) are drawn when the file has t
   --force            replace a read-only output
   --stepping, --sphere-test, --sqrt
                      the render method (default: the crate's Method::DEFAULT)
+  --secondary convex|epsilon:VALUE
+                     where shadow and reflection rays start: convex (default; no
+                     epsilon) or the textbook fixed epsilon, VALUE scene units (a
+                     positive finite number); only scenes with lights or mirrors use it
   --help, -h         this text
 
 Flags take their value as the next argument or after `=` (--output=out.png); a value
@@ -87,6 +123,7 @@ struct Args {
     scene: PathBuf,
     output: PathBuf,
     method: Method,
+    secondary: SecondaryOrigin,
     force: bool,
 }
 
@@ -134,6 +171,7 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
     let mut scene = None;
     let mut output = None;
     let mut method = Method::default();
+    let mut secondary = Options::DEFAULT.secondary;
     let mut force = false;
     let mut seen: Vec<&'static str> = Vec::new();
     let mut flags_ended = false;
@@ -156,6 +194,7 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
             "--stepping" => "--stepping",
             "--sphere-test" => "--sphere-test",
             "--sqrt" => "--sqrt",
+            "--secondary" => "--secondary",
             "--force" => "--force",
             _ => return Err(format!("unknown flag `{}`", arg.to_string_lossy())),
         };
@@ -190,8 +229,9 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
         }
         let text = value
             .to_str()
-            .ok_or_else(|| format!("{flag}: `{}` is not a method name", value.to_string_lossy()))?;
+            .ok_or_else(|| format!("{flag}: `{}` is not a valid choice", value.to_string_lossy()))?;
         match flag {
+            "--secondary" => secondary = parse_secondary(text)?,
             "--stepping" => method.stepping = text.parse().map_err(|e| format!("--stepping: {e}"))?,
             "--sphere-test" => {
                 method.sphere_test = text.parse().map_err(|e| format!("--sphere-test: {e}"))?
@@ -213,6 +253,7 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
         scene,
         output,
         method,
+        secondary,
         force,
     }))
 }
@@ -239,7 +280,9 @@ fn run() -> Result<(), String> {
             output(&render, size, destination, &args.output)?
         }
         None => {
-            let render = Render::new(&file.scene, &file.camera).with_method(args.method);
+            let render = Render::new(&file.scene, &file.camera)
+                .with_method(args.method)
+                .with_options(Options::DEFAULT.with_secondary(args.secondary));
             output(&render, size, destination, &args.output)?
         }
     };
@@ -253,7 +296,7 @@ fn run() -> Result<(), String> {
         args.scene.display(),
         size.width,
         size.height,
-        features(&file),
+        features(&file, args.secondary),
         args.method,
         rendering.as_secs_f64() * 1e3,
         rendering.as_secs_f64() * 1e9 / pixels as f64,
@@ -299,19 +342,21 @@ fn output<const N: usize, const L: usize, const P: usize, const D: usize>(
     }
 }
 
-/// The summary's note of what a scene has beyond spheres (` (2 lights, 1 plane,
-/// max_depth 3)`); empty for one drawn through the spheres-only type.
-fn features(file: &FullSceneFile) -> String {
+/// The summary's note of what a scene has beyond spheres and where its secondary rays
+/// start (` (2 lights, 1 plane, max_depth 3, secondary convex)`); empty for one drawn
+/// through the spheres-only type, which traces no secondary ray.
+fn features(file: &FullSceneFile, secondary: SecondaryOrigin) -> String {
     if !file.has_features() {
         return String::new();
     }
     let count = |n: usize, noun: &str| format!("{n} {noun}{}", if n == 1 { "" } else { "s" });
     let scene = &file.scene;
     format!(
-        " ({}, {}, max_depth {})",
+        " ({}, {}, max_depth {}, secondary {})",
         count(scene.lights().len(), "light"),
         count(scene.planes().len(), "plane"),
-        scene.max_depth()
+        scene.max_depth(),
+        secondary_name(secondary)
     )
 }
 

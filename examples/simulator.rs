@@ -13,11 +13,17 @@
 //! Keys: ←/→ orbit around the look-at point (azimuth, 5° a press), ↑/↓ elevation; left
 //! mouse drag orbits too (half a turn per display width); wheel, `+`/`=` and `-` zoom;
 //! `R` resets the view; `M`/`Shift+M` next/previous method (all 30 of `Method::ALL`);
+//! `E`/`Shift+E` next/previous origin of the shadow and reflection rays (convex, then
+//! the textbook fixed epsilon at 1e-3, 1e-6 and 1e-1 scene units: [`SECONDARY`]);
 //! `D` toggles the difference view (pixels where the shown frame differs from the
-//! `direct/robust/exact` render through the same display model, in magenta); `Tab`/
-//! `Shift+Tab` or `1`–`9` pick the display model; `B` switches the Bayer matrix 8×8/4×4;
-//! `T` switches the OLED theme (blue/white) of the binary models; `Esc`/`Q` quits.
+//! `direct/robust/exact` render with the convex origin, through the same display
+//! model, in magenta); `Tab`/`Shift+Tab` or `1`–`9` pick the display model; `B`
+//! switches the Bayer matrix 8×8/4×4; `T` switches the OLED theme (blue/white) of the
+//! binary models; `Esc`/`Q` quits.
 //!
+//! A scene file without lights, planes or mirrors is drawn through the spheres-only
+//! type `Scene<N>` (the Lab #1 loop), one with them through the full type with the
+//! host's capacities, as the render CLI does: the same file gives the CLI's pixels.
 //! The scene file is polled for changes (mtime, four times a second) and reloaded;
 //! a file that fails to load leaves the last good scene on screen with the error text
 //! over it (with `--no-overlay`, on stderr only). The display resolution is fixed for the session: the file's
@@ -25,7 +31,8 @@
 //!
 //! Below the image, a status bar (omitted with `--no-overlay`) shows the render time
 //! of the last frame (the kernel drawing into the model's framebuffer; measured with
-//! `Instant` around `Render::draw`), the model and the method.
+//! `Instant` around `Render::draw`), the model and the method, and for a scene with
+//! lights, planes or mirrors the secondary rays' origin (`convex`, `eps=1e-3`).
 //!
 //! Headless: `--screenshot OUT.png` renders one frame and writes it (the window's
 //! pixels, with `--scale`) without opening a window or needing a display.
@@ -53,15 +60,28 @@ use embedded_graphics_simulator::{
 };
 use embedded_raytracer::{
     dither::{Bayer, DitherColor, DitherExt},
-    scene_file, Camera, CameraParams, Method, Render, Scene, SphereTest, Sqrt, Stepping, Vec3,
+    scene_file, Camera, CameraParams, Method, Options, Render, Scene, SecondaryOrigin, SphereTest, Sqrt,
+    Stepping, Vec3,
 };
 
 #[path = "common/standard.rs"]
 mod standard;
-use standard::MAX_SPHERES;
+use standard::{FullSceneFile, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
 
-/// The difference view's reference: no accumulation, no cancellation, exact root.
+/// The difference view's reference: no accumulation, no cancellation, exact root (and
+/// the convex origin for secondary rays: no epsilon).
 const REFERENCE: Method = Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact);
+
+/// The secondary-ray origins the `E` key cycles through: the default, the textbook
+/// epsilon, one below the hit points' rounding error at the standard scenes'
+/// coordinates (shadow acne), one large for them (a ray that starts near where a
+/// sphere rests on the floor can skip past the surface it should meet).
+const SECONDARY: [SecondaryOrigin; 4] = [
+    SecondaryOrigin::Convex,
+    SecondaryOrigin::TEXTBOOK,
+    SecondaryOrigin::Epsilon(1e-6),
+    SecondaryOrigin::Epsilon(1e-1),
+];
 
 /// Orbit step per arrow key press.
 const ORBIT_STEP: f32 = 5.0 * core::f32::consts::PI / 180.0;
@@ -155,6 +175,8 @@ impl Model {
 struct View {
     model: Model,
     method: Method,
+    /// Where shadow and reflection rays start (scenes with lights or mirrors).
+    secondary: SecondaryOrigin,
     bayer: Bayer,
     theme: BinaryColorTheme,
 }
@@ -183,34 +205,84 @@ struct Shown {
     render_time: Duration,
 }
 
-/// What to render: scene, camera, method.
-type Input<'a> = (&'a Scene<MAX_SPHERES>, &'a Camera, Method);
+/// The scene type with every capacity the host tools have.
+type FullScene = Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>;
 
-/// Renders through the display model and converts to window colours.
-fn shade(scene: &Scene<MAX_SPHERES>, camera: &Camera, view: &View, method: Method) -> Shown {
-    let render = (scene, camera, method);
+/// A loaded scene, through the type the render CLI would draw it with.
+enum Loaded {
+    /// No light, plane or mirror: the spheres-only type, whose loop is Lab #1's.
+    Spheres(Box<Scene<MAX_SPHERES>>),
+    /// Lights, planes or mirrors: the full type.
+    Full(Box<FullScene>),
+}
+
+impl Loaded {
+    /// Loads a scene file with the full capacities; returns the scene and its camera.
+    fn load(path: &Path) -> Result<(Loaded, CameraParams), String> {
+        let file: Box<FullSceneFile> = Box::new(scene_file::load(path).map_err(|e| e.to_string())?);
+        let params = *file.camera.params();
+        let scene = match file.spheres_only() {
+            Some(spheres) => Loaded::Spheres(Box::new(spheres.scene)),
+            None => Loaded::Full(Box::new(file.scene)),
+        };
+        Ok((scene, params))
+    }
+
+    /// Whether the scene is drawn through the full type (lights, planes or mirrors):
+    /// the one whose shadow and reflection rays the secondary origin decides.
+    fn has_features(&self) -> bool {
+        matches!(self, Loaded::Full(_))
+    }
+}
+
+/// What to render: scene, camera, method, options.
+type Input<'a, const N: usize, const L: usize, const P: usize, const D: usize> =
+    (&'a Scene<N, L, P, D>, &'a Camera, Method, Options);
+
+/// Renders `view` of the scene (with `view`'s secondary origin) through the display
+/// model and converts to window colours.
+fn shade(scene: &Loaded, camera: &Camera, view: &View, method: Method) -> Shown {
+    let options = Options::DEFAULT.with_secondary(view.secondary);
+    match scene {
+        Loaded::Spheres(scene) => shade_scene((&**scene, camera, method, options), view),
+        Loaded::Full(scene) => shade_scene((&**scene, camera, method, options), view),
+    }
+}
+
+/// [`shade`] for one scene type.
+fn shade_scene<const N: usize, const L: usize, const P: usize, const D: usize>(
+    render: Input<'_, N, L, P, D>,
+    view: &View,
+) -> Shown {
+    let camera = render.1;
     let s = view.output_settings();
     let b = view.bayer;
     match view.model {
-        Model::Rgb888 => plain::<Rgb888>(render, camera, &s),
-        Model::Rgb565 => plain::<Rgb565>(render, camera, &s),
-        Model::Gray8 => plain::<Gray8>(render, camera, &s),
-        Model::Gray4 => plain::<Gray4>(render, camera, &s),
-        Model::Gray2 => plain::<Gray2>(render, camera, &s),
-        Model::Binary => plain::<BinaryColor>(render, camera, &s),
-        Model::Gray4Dither => dithered::<Gray4>(render, camera, &s, b),
-        Model::Gray2Dither => dithered::<Gray2>(render, camera, &s, b),
-        Model::BinaryDither => dithered::<BinaryColor>(render, camera, &s, b),
+        Model::Rgb888 => plain::<Rgb888, N, L, P, D>(render, camera, &s),
+        Model::Rgb565 => plain::<Rgb565, N, L, P, D>(render, camera, &s),
+        Model::Gray8 => plain::<Gray8, N, L, P, D>(render, camera, &s),
+        Model::Gray4 => plain::<Gray4, N, L, P, D>(render, camera, &s),
+        Model::Gray2 => plain::<Gray2, N, L, P, D>(render, camera, &s),
+        Model::Binary => plain::<BinaryColor, N, L, P, D>(render, camera, &s),
+        Model::Gray4Dither => dithered::<Gray4, N, L, P, D>(render, camera, &s, b),
+        Model::Gray2Dither => dithered::<Gray2, N, L, P, D>(render, camera, &s, b),
+        Model::BinaryDither => dithered::<BinaryColor, N, L, P, D>(render, camera, &s, b),
     }
 }
 
 /// The kernel's own colour conversion (`C::from(Rgb888)`) into a `C` framebuffer.
-fn plain<C>(input: Input<'_>, camera: &Camera, settings: &OutputSettings) -> Shown
+fn plain<C, const N: usize, const L: usize, const P: usize, const D: usize>(
+    input: Input<'_, N, L, P, D>,
+    camera: &Camera,
+    settings: &OutputSettings,
+) -> Shown
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888> + From<BinaryColor>,
 {
     let mut display = SimulatorDisplay::<C>::new(camera.size());
-    let render = Render::new(input.0, input.1).with_method(input.2);
+    let render = Render::new(input.0, input.1)
+        .with_method(input.2)
+        .with_options(input.3);
     let start = Instant::now();
     let Ok(()) = render.draw(&mut display); // the simulator cannot fail
     let render_time = start.elapsed();
@@ -221,12 +293,19 @@ where
 }
 
 /// The kernel's ordered dither in front of a low-depth `C` framebuffer.
-fn dithered<C>(input: Input<'_>, camera: &Camera, settings: &OutputSettings, bayer: Bayer) -> Shown
+fn dithered<C, const N: usize, const L: usize, const P: usize, const D: usize>(
+    input: Input<'_, N, L, P, D>,
+    camera: &Camera,
+    settings: &OutputSettings,
+    bayer: Bayer,
+) -> Shown
 where
     C: DitherColor + From<Rgb888> + Into<Rgb888> + From<BinaryColor>,
 {
     let mut display = SimulatorDisplay::<C>::new(camera.size());
-    let render = Render::new(input.0, input.1).with_method(input.2);
+    let render = Render::new(input.0, input.1)
+        .with_method(input.2)
+        .with_options(input.3);
     let start = Instant::now();
     let Ok(()) = render.draw(&mut display.dithered_with(bayer));
     let render_time = start.elapsed();
@@ -422,7 +501,7 @@ struct App {
     mtime: Option<SystemTime>,
     last_poll: Instant,
     /// The last scene that loaded.
-    scene: Box<Scene<MAX_SPHERES>>,
+    scene: Loaded,
     base: CameraParams,
     camera: Camera,
     /// The display's resolution (fixed for the session).
@@ -443,8 +522,7 @@ struct App {
 
 impl App {
     fn new(args: &Args) -> Result<Self, String> {
-        let file = scene_file::load::<MAX_SPHERES, 0, 0, 0>(&args.scene).map_err(|e| e.to_string())?;
-        let base = *file.camera.params();
+        let (scene, base) = Loaded::load(&args.scene)?;
         let size = args.size.unwrap_or(base.size);
         let camera = Camera::from_params(CameraParams { size, ..base }).map_err(|e| {
             format!(
@@ -464,7 +542,7 @@ impl App {
             mtime: mtime(&args.scene),
             path: args.scene.clone(),
             last_poll: Instant::now(),
-            scene: Box::new(file.scene),
+            scene,
             base,
             camera,
             size,
@@ -472,6 +550,7 @@ impl App {
             view: View {
                 model: args.model,
                 method: args.method,
+                secondary: Options::DEFAULT.secondary,
                 bayer: args.bayer,
                 theme: args.theme,
             },
@@ -508,10 +587,10 @@ impl App {
             return;
         }
         self.mtime = now;
-        match scene_file::load::<MAX_SPHERES, 0, 0, 0>(&self.path) {
-            Ok(file) => {
-                *self.scene = file.scene;
-                self.base = *file.camera.params();
+        match Loaded::load(&self.path) {
+            Ok((scene, base)) => {
+                self.scene = scene;
+                self.base = base;
                 self.error = None;
                 self.update_camera();
                 eprintln!("{}: reloaded", self.path.display());
@@ -529,9 +608,13 @@ impl App {
         let shown = shade(&self.scene, &self.camera, &self.view, self.view.method);
         let w = self.size.width as usize;
         let mut differing = 0usize;
+        let reference_view = View {
+            secondary: SecondaryOrigin::Convex,
+            ..self.view
+        };
         let reference = self
             .diff
-            .then(|| shade(&self.scene, &self.camera, &self.view, REFERENCE).pixels);
+            .then(|| shade(&self.scene, &self.camera, &reference_view, REFERENCE).pixels);
         let pixels = shown.pixels.iter().enumerate().map(|(k, &c)| match &reference {
             Some(r) if r.get(k) != Some(&c) => {
                 differing += 1;
@@ -550,27 +633,7 @@ impl App {
                 Size::new(self.size.width, self.status_height),
             );
             let Ok(()) = self.screen.fill_solid(&status, Rgb888::new(24, 24, 24));
-            let ms = shown.render_time.as_secs_f64() * 1e3;
-            let mut model = self.view.model.name().to_string();
-            if self.view.model.is_dithered() {
-                model += if self.view.bayer == Bayer::Four {
-                    " 4x4"
-                } else {
-                    " 8x8"
-                };
-            }
-            let third = if self.diff {
-                format!("D: {differing} px differ")
-            } else {
-                let o = self.orbit;
-                format!(
-                    "az {:.0} el {:+.0} zoom {}",
-                    o.azimuth.to_degrees(),
-                    o.elevation.to_degrees(),
-                    -o.zoom_steps
-                )
-            };
-            let lines = [format!("{ms:.2} ms {model}"), self.view.method.to_string(), third];
+            let lines = self.status(shown.render_time, differing);
             let style = MonoTextStyle::new(self.font, Rgb888::new(230, 230, 230));
             let line_h = self.font.character_size.height as i32 + 1;
             for (k, line) in lines.iter().enumerate() {
@@ -582,6 +645,37 @@ impl App {
             }
         }
         self.dirty = false;
+    }
+
+    /// The status bar's three lines: render time and display model; the method (and,
+    /// for a scene with lights, planes or mirrors, the secondary origin); the
+    /// difference count or the orbit.
+    fn status(&self, render_time: Duration, differing: usize) -> [String; 3] {
+        let ms = render_time.as_secs_f64() * 1e3;
+        let mut model = self.view.model.name().to_string();
+        if self.view.model.is_dithered() {
+            model += if self.view.bayer == Bayer::Four {
+                " 4x4"
+            } else {
+                " 8x8"
+            };
+        }
+        let mut method = self.view.method.to_string();
+        if self.scene.has_features() {
+            method = format!("{method} {}", secondary_label(self.view.secondary));
+        }
+        let third = if self.diff {
+            format!("D: {differing} px differ")
+        } else {
+            let o = self.orbit;
+            format!(
+                "az {:.0} el {:+.0} zoom {}",
+                o.azimuth.to_degrees(),
+                o.elevation.to_degrees(),
+                -o.zoom_steps
+            )
+        };
+        [format!("{ms:.2} ms {model}"), method, third]
     }
 
     /// The load error over the (last good) image, wrapped to the display width.
@@ -625,6 +719,16 @@ impl App {
                     let k = all.iter().position(|&m| m == self.view.method).unwrap_or(0);
                     let next = if shift(keymod) { k + all.len() - 1 } else { k + 1 };
                     self.view.method = all[next % all.len()];
+                    self.dirty = true;
+                }
+                Keycode::E => {
+                    let n = SECONDARY.len();
+                    let k = SECONDARY
+                        .iter()
+                        .position(|&s| s == self.view.secondary)
+                        .unwrap_or(0);
+                    let next = if shift(keymod) { k + n - 1 } else { k + 1 };
+                    self.view.secondary = SECONDARY[next % n];
                     self.dirty = true;
                 }
                 Keycode::D => {
@@ -716,6 +820,14 @@ impl App {
     }
 }
 
+/// The status bar's name of a secondary origin: `convex`, `eps=1e-3`.
+fn secondary_label(secondary: SecondaryOrigin) -> String {
+    match secondary {
+        SecondaryOrigin::Convex => "convex".to_string(),
+        SecondaryOrigin::Epsilon(eps) => format!("eps={eps:e}"),
+    }
+}
+
 fn mtime(path: &Path) -> Option<SystemTime> {
     std::fs::metadata(path).and_then(|m| m.modified()).ok()
 }
@@ -791,6 +903,13 @@ mod tests {
             .chain(extra.iter().copied())
             .map(String::from);
         parse_args(all).unwrap()
+    }
+
+    fn spheres(scene: &Loaded) -> usize {
+        match scene {
+            Loaded::Spheres(scene) => scene.spheres().len(),
+            Loaded::Full(scene) => scene.spheres().len(),
+        }
     }
 
     fn key(keycode: Keycode) -> SimulatorEvent {
@@ -948,7 +1067,7 @@ mod tests {
         poll(&mut app);
         let error = app.error.clone().unwrap();
         assert!(error.contains("radius"), "{error}");
-        assert_eq!(app.scene.spheres().len(), 5);
+        assert_eq!(spheres(&app.scene), 5);
         app.redraw();
         // The error box covers the top rows; the rest is still the last good frame.
         assert_ne!(app.screen.get_pixel(Point::new(0, 0)), before[0]);
@@ -961,8 +1080,102 @@ mod tests {
         touch(&good[..i], 2_000_000);
         poll(&mut app);
         assert_eq!(app.error, None);
-        assert_eq!(app.scene.spheres().len(), 4);
+        assert_eq!(spheres(&app.scene), 4);
+        assert!(!app.scene.has_features());
+        // A file that gains lights, a floor and mirrors: reloaded through the full type.
+        touch(
+            &std::fs::read_to_string("scenes/mirrors.toml").unwrap(),
+            3_000_000,
+        );
+        poll(&mut app);
+        assert_eq!(app.error, None);
+        assert!(app.scene.has_features());
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// The feature scenes load through the full type and show the kernel's pixels for
+    /// that type (the render CLI's); `E` cycles the secondary origin, which the status
+    /// bar names and the difference view measures against the convex one.
+    #[test]
+    fn feature_scenes_and_the_secondary_origin_key() {
+        use embedded_graphics::pixelcolor::Rgb888;
+        let lab = App::new(&args("scenes/lab.toml", &[])).unwrap();
+        assert!(!lab.scene.has_features());
+        assert!(!lab.status(Duration::ZERO, 0)[1].contains("convex"));
+        for name in standard::FEATURE_SCENES {
+            let path = standard::path(name);
+            let mut app = App::new(&args(&path, &["--size", "96x96", "--no-overlay"])).unwrap();
+            assert!(app.scene.has_features(), "{name}");
+            app.redraw();
+            let file = standard::load_full(name);
+            let mut expected = Vec::new();
+            Render::<'_, MAX_SPHERES, Rgb888, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>::new(
+                &file.scene,
+                &app.camera,
+            )
+            .trace(|s| expected.push(s.color));
+            let shown: Vec<Rgb888> = Rectangle::new(Point::zero(), app.size)
+                .points()
+                .map(|p| app.screen.get_pixel(p))
+                .collect();
+            assert!(shown == expected, "{name}: not the kernel's pixels");
+        }
+
+        // The method the difference view compares with, so only the origin differs.
+        let open = |name: &str| {
+            App::new(&args(
+                &standard::path(name),
+                &["--size", "120x120", "--sphere-test", "robust", "--diff"],
+            ))
+            .unwrap()
+        };
+        let mut app = open("shadows");
+        let mut seen = Vec::new();
+        for _ in 0..SECONDARY.len() {
+            seen.push(app.view.secondary);
+            app.handle(key(Keycode::E));
+        }
+        assert_eq!(seen, SECONDARY);
+        assert_eq!(app.view.secondary, SecondaryOrigin::Convex, "a full cycle");
+        assert!(app.status(Duration::ZERO, 0)[1].ends_with(" convex"));
+        app.redraw();
+        assert_eq!(app.differing, Some(0), "convex against the convex reference");
+
+        let shift_e = SimulatorEvent::KeyDown {
+            keycode: Keycode::E,
+            keymod: Mod::LSHIFTMOD,
+            repeat: false,
+        };
+        app.handle(shift_e);
+        assert_eq!(
+            app.view.secondary,
+            SECONDARY[SECONDARY.len() - 1],
+            "Shift+E: back"
+        );
+
+        // Each epsilon that fails on a feature scene: the marked pixels are exactly
+        // those that differ from the convex reference.
+        let cases = [
+            ("shadows", SecondaryOrigin::Epsilon(1e-6), "eps=1e-6"),
+            ("mirrors", SecondaryOrigin::Epsilon(1e-1), "eps=1e-1"),
+        ];
+        for (name, secondary, label) in cases {
+            let mut app = open(name);
+            while app.view.secondary != secondary {
+                app.handle(key(Keycode::E));
+            }
+            assert!(app.status(Duration::ZERO, 0)[1].ends_with(label));
+            app.redraw();
+            let n = app.differing.unwrap();
+            assert!(n > 0, "{name}: {label} changed no pixel");
+            let shown = shade(&app.scene, &app.camera, &app.view, app.view.method).pixels;
+            let convex = View {
+                secondary: SecondaryOrigin::Convex,
+                ..app.view
+            };
+            let reference = shade(&app.scene, &app.camera, &convex, REFERENCE).pixels;
+            assert_eq!(n, shown.iter().zip(&reference).filter(|(a, b)| a != b).count());
+        }
     }
 
     #[test]

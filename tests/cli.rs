@@ -958,3 +958,103 @@ fn the_measured_worst_case_is_the_worst_accepted_scene() {
         );
     }
 }
+
+/// `--secondary`: `convex` is the default's PNG, `epsilon:VALUE` is the kernel's render
+/// with that epsilon (and a large one visibly moves the shadows), the summary names it;
+/// a bad value is one message naming the flag, exit 2, and nothing written.
+#[test]
+fn secondary_origin_flag() {
+    use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+    use embedded_raytracer::{scene_file, Options, Render, SecondaryOrigin};
+    let dir = scratch("secondary");
+    let lit = write(&dir, "lit.toml", LIT);
+    let png = |args: &[&str], out: &str| {
+        let o = run_in(&dir, &[&[lit, "--output", out][..], args].concat());
+        assert_rendered(&o);
+        let summary = String::from_utf8_lossy(&o.stdout).into_owned();
+        (summary, decode(&std::fs::read(dir.join(out)).unwrap()).2)
+    };
+    let traced = |secondary| {
+        let file = scene_file::load::<1, 2, 1, 3>(dir.join(lit)).unwrap();
+        let mut pixels = Vec::new();
+        Render::<'_, 1, Rgb888, 2, 1, 3>::new(&file.scene, &file.camera)
+            .with_options(Options::DEFAULT.with_secondary(secondary))
+            .trace(|s| pixels.extend([s.color.r(), s.color.g(), s.color.b()]));
+        pixels
+    };
+
+    let (summary, default) = png(&[], "default.png");
+    assert!(summary.contains("max_depth 3, secondary convex)"), "{summary}");
+    assert!(default == traced(SecondaryOrigin::Convex));
+    let (summary, convex) = png(&["--secondary", "convex"], "convex.png");
+    assert!(summary.contains("secondary convex)"), "{summary}");
+    assert!(convex == default, "--secondary convex is not the default");
+    // Half a unit: the floor's shadow rays start above the sphere resting on it, so
+    // light leaks under it and the picture changes.
+    let (summary, leaky) = png(&["--secondary=epsilon:0.5"], "leaky.png");
+    assert!(summary.contains("secondary epsilon:0.5)"), "{summary}");
+    assert!(leaky == traced(SecondaryOrigin::Epsilon(0.5)));
+    assert!(leaky != default, "epsilon 0.5 changed no pixel");
+    let (summary, textbook) = png(&["--secondary", "epsilon:1e-3"], "textbook.png");
+    assert!(summary.contains("secondary epsilon:0.001)"), "{summary}");
+    assert!(textbook == traced(SecondaryOrigin::TEXTBOOK));
+
+    // A spheres-only file traces no secondary ray: any choice, the same PNG.
+    let s = write(&dir, "s.toml", GOOD);
+    let spheres = |args: &[&str], out: &str| {
+        assert_rendered(&run_in(&dir, &[&[s, "--output", out][..], args].concat()));
+        std::fs::read(dir.join(out)).unwrap()
+    };
+    assert!(spheres(&[], "s-default.png") == spheres(&["--secondary", "epsilon:0.5"], "s-eps.png"));
+
+    let out = dir.join("keep.png");
+    std::fs::write(&out, b"sentinel").unwrap();
+    let out_s = out.to_str().unwrap();
+    for (value, expect) in [
+        (
+            "concave",
+            "--secondary: expected convex or epsilon:VALUE, got `concave`",
+        ),
+        ("epsilon", "expected convex or epsilon:VALUE"),
+        ("epsilon:", "--secondary: epsilon `` is not a number"),
+        ("epsilon:abc", "--secondary: epsilon `abc` is not a number"),
+        (
+            "epsilon:0",
+            "--secondary: epsilon must be a positive finite number, got `0`",
+        ),
+        ("epsilon:-0.001", "positive finite number, got `-0.001`"),
+        ("epsilon:NaN", "positive finite number, got `NaN`"),
+        ("epsilon:inf", "positive finite number, got `inf`"),
+        ("epsilon:1e39", "positive finite number, got `1e39`"),
+    ] {
+        assert_refused(
+            &run_in(&dir, &[lit, "--output", out_s, &format!("--secondary={value}")]),
+            expect,
+        );
+        assert_eq!(std::fs::read(&out).unwrap(), b"sentinel", "{value}");
+        let fresh = dir.join("fresh.png");
+        assert_refused(
+            &run_in(
+                &dir,
+                &[lit, "--output", fresh.to_str().unwrap(), "--secondary", value],
+            ),
+            "--secondary",
+        );
+        assert!(!fresh.exists(), "{value}: an output was written");
+    }
+    assert_refused(&run_in(&dir, &[lit, "--secondary"]), "--secondary needs a value");
+    assert_refused(
+        &run_in(&dir, &[lit, "--secondary", "convex", "--secondary=convex"]),
+        "--secondary is given twice",
+    );
+    // The usage names the flag and its choices.
+    let help = String::from_utf8_lossy(&run_in(&dir, &["--help"]).stdout).into_owned();
+    assert!(
+        help.lines()
+            .next()
+            .unwrap()
+            .contains("[--secondary convex|epsilon:VALUE]"),
+        "{help}"
+    );
+    assert!(help.contains("secondary convex)"), "{help}");
+}

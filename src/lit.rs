@@ -207,13 +207,16 @@ impl FramePlane {
     }
 }
 
-/// `floor(x)` as an integer (saturating far outside the `i64` range, NaN → 0): only
-/// its parity is used, and every `f32` beyond 2²⁴ is an integer already.
+/// `floor(x)` as an `i32` (saturating at `±2³¹`, NaN → 0): only its parity is used.
+/// `i32`, not `i64`: on a Cortex-M the `f32 → i32` conversion is one instruction and
+/// the `i64` one a library call. Beyond `2³¹` cells from the plane's point every cell
+/// is far smaller than a pixel (the checker is aliasing noise there, for the reference
+/// too), so the saturated parity costs nothing visible.
 #[inline(always)]
-fn floor(x: f32) -> i64 {
-    let t = x as i64;
+fn floor(x: f32) -> i32 {
+    let t = x as i32;
     if (t as f32) > x {
-        t - 1
+        t.wrapping_sub(1)
     } else {
         t
     }

@@ -697,7 +697,11 @@ impl<
     /// The colour of a primary ray along `d` whose closest hit is `first`: the local
     /// colour, mixed with what the reflected rays see while the surface is a mirror and
     /// the depth allows, rounded to 8 bits once.
-    #[inline(always)]
+    ///
+    /// Out of line: the row loop inlines the tracer twice (samples and colour runs),
+    /// and shading is hundreds of instructions per pixel, so one copy per scene type
+    /// costs one call per pixel and halves the path's flash.
+    #[inline(never)]
     fn color(&mut self, first: Option<(Object, f32)>, d: Vec3, i: u32) -> Rgb888 {
         let f = self.f;
         let mut acc = [0.0f32; 3];

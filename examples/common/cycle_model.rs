@@ -129,8 +129,9 @@ pub const TIMINGS: &[Timing] = &[
         mnemonics: &[
             "mov", "movw", "movt", "mvn", "add", "addw", "adc", "sub", "subw", "sbc", "rsb", "adr", "cmp",
             "cmn", "and", "eor", "orr", "orn", "bic", "tst", "teq", "lsl", "lsr", "asr", "ror", "rrx", "clz",
-            "sxtb", "sxth", "uxtb", "uxth", "sxtab", "sxtah", "uxtab", "uxtah", "ubfx", "sbfx", "bfc", "bfi",
-            "rev", "rev16", "revsh", "rbit", "ssat", "usat", "nop", "sel", "uadd8", "usub8", "qadd", "qsub",
+            "sxtb", "sxth", "uxtb", "uxth", "sxtab", "sxtah", "uxtab", "uxtah", "sxtb16", "uxtb16",
+            "sxtab16", "uxtab16", "ubfx", "sbfx", "bfc", "bfi", "rev", "rev16", "revsh", "rbit", "ssat",
+            "usat", "nop", "sel", "uadd8", "usub8", "qadd", "qsub",
         ],
         base: 1,
         shape: Shape::Fixed,

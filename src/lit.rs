@@ -410,7 +410,7 @@ fn render_with<
         any_hit: options.shadow_any_hit,
         span_culling: options.span_culling,
         eps: eps * frame.scale.0,
-        dn_margin: f64::from(step_err) + 8.0 * f64::from(UNIT_ROUNDOFF) * d_max,
+        dn_margin: f64::from(S::error_bound(camera)) + 8.0 * f64::from(UNIT_ROUNDOFF) * d_max,
         i0: frame.i0,
         i1: frame.i1,
     };

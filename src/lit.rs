@@ -39,7 +39,7 @@ use crate::math::{sqrt_exact, SqrtFn, UNIT_ROUNDOFF};
 use crate::render::Options;
 use crate::scanline::{self, RowTracer};
 use crate::scene::Scene;
-use crate::shade::{channels, Shader, AMBIENT};
+use crate::shade::{channels, lab1_factor, Shader};
 use crate::sink::RowSink;
 use crate::span::{Margin, Silhouette};
 use crate::sphere::Sphere;
@@ -630,13 +630,7 @@ impl<
     #[inline(always)]
     fn local(&mut self, k: Object, s: &Surface, p: Vec3, dir: Vec3, column: Option<u32>) -> [f32; 3] {
         if L == 0 || self.f.lights.is_empty() {
-            let kz = if s.lab_nz > 1.0 {
-                1.0
-            } else if s.lab_nz >= AMBIENT {
-                s.lab_nz
-            } else {
-                AMBIENT
-            };
+            let kz = lab1_factor(s.lab_nz);
             return s.rgb.map(|c| c * kz);
         }
         let f = self.f;

@@ -93,19 +93,27 @@ pub(crate) fn channels(color: Rgb888) -> [f32; 3] {
 /// [`lab1`] on pre-converted channels: bit-identical (the u8 → f32 conversion is exact).
 #[inline(always)]
 fn lab1_channels(c: [f32; 3], n_z: f32) -> Rgb888 {
-    // Clamp with comparisons, not `max`/`min` (on a Cortex-M4 those are calls to
-    // libm's `fmaxf`/`fminf`, ~30 instructions per hit pixel) nor `clamp` (NaN would
-    // propagate): a NaN fails both tests and takes the 0.3 floor, exactly as
-    // `n_z.max(0.3).min(1.0)` does (tested below).
-    let k = if n_z > 1.0 {
+    let k = lab1_factor(n_z);
+    let [r, g, b] = c;
+    Rgb888::new(scale(r, k), scale(g, k), scale(b, k))
+}
+
+/// Lab #1's factor `clamp(n_z, 0.3, 1)`, shared by the Lab #1 loop and the
+/// scene-features path's unlit scenes.
+///
+/// Clamped with comparisons, not `max`/`min` (on a Cortex-M4 those are calls to libm's
+/// `fmaxf`/`fminf`, ~30 instructions per hit pixel) nor `clamp` (NaN would propagate):
+/// a NaN fails both tests and takes the 0.3 floor, exactly as `n_z.max(0.3).min(1.0)`
+/// does (tested below).
+#[inline(always)]
+pub(crate) fn lab1_factor(n_z: f32) -> f32 {
+    if n_z > 1.0 {
         1.0
     } else if n_z >= AMBIENT {
         n_z
     } else {
         AMBIENT
-    };
-    let [r, g, b] = c;
-    Rgb888::new(scale(r, k), scale(g, k), scale(b, k))
+    }
 }
 
 /// `round(channel × k)` for `k ∈ [0.3, 1]` and a channel in `0 … 255`: in

@@ -188,6 +188,13 @@ impl FramePlane {
         })
     }
 
+    /// The ray parameter where `o + t·dir` meets the plane (NaN or ±∞ where the ray is
+    /// parallel to it, which every `t > 0 && t < t_max` test rejects).
+    #[inline(always)]
+    fn t_from(&self, o: Vec3, dir: Vec3) -> f32 {
+        (self.q - o).dot(self.n) / dir.dot(self.n)
+    }
+
     /// The colour at `p` (eye-relative, scaled): the checker cell's.
     #[inline(always)]
     fn color_at(&self, p: Vec3) -> [f32; 3] {
@@ -205,6 +212,14 @@ impl FramePlane {
             }
         }
     }
+}
+
+/// The second root of the sphere `g` along `o + t·dir` (`a = dir·dir`) for an origin `o`
+/// on its surface, where the first root is 0: `t = 2·(C − o)·dir/a`, positive only when
+/// the ray goes into the sphere — computed directly, with no root near 0 to misjudge.
+#[inline(always)]
+fn far_root(g: &SphereGeom, o: Vec3, dir: Vec3, a: f32) -> f32 {
+    2.0 * (g.l - o).dot(dir) / a
 }
 
 /// `floor(x)` as an `i32` (saturating at `±2³¹`, NaN → 0): only its parity is used.
@@ -491,7 +506,7 @@ impl<
                 if !inside {
                     continue;
                 }
-                let t = 2.0 * (s.geom.l - o).dot(dir) / a;
+                let t = far_root(&s.geom, o, dir, a);
                 (t > 0.0 && t < t_max).then_some(t)
             } else {
                 T::ray::<Q>(&s.geom.seen_from(o), dir, a, t_max)
@@ -506,7 +521,7 @@ impl<
             if !O::TESTS_SELF && n + k == from {
                 continue; // a ray leaving a plane never meets it again
             }
-            let t = (plane.q - o).dot(plane.n) / dir.dot(plane.n);
+            let t = plane.t_from(o, dir);
             if t > 0.0 && t < t_max {
                 t_max = t;
                 best = Some((n + k, t));
@@ -525,7 +540,7 @@ impl<
                 if !inside {
                     return false;
                 }
-                let t = 2.0 * (s.geom.l - o).dot(l) / l.dot(l);
+                let t = far_root(&s.geom, o, l, l.dot(l));
                 return t > 0.0 && t < dist;
             }
             // A segment wholly inside a sphere ends before its far root: `t < dist` fails.
@@ -534,7 +549,7 @@ impl<
             if !O::TESTS_SELF && k == from {
                 return false;
             }
-            let t = (plane.q - o).dot(plane.n) / l.dot(plane.n);
+            let t = plane.t_from(o, l);
             t > 0.0 && t < dist
         } else {
             false

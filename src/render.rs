@@ -17,11 +17,12 @@ use embedded_graphics::primitives::Rectangle;
 use crate::camera::Camera;
 use crate::dispatch::{dispatch, Visit};
 use crate::error::BandError;
+use crate::fixed;
 use crate::frame;
 use crate::intersect::{TestStrategy, FD_ANCHOR_INTERVAL};
 use crate::lit::{self, SecondaryOrigin};
 use crate::math::SqrtFn;
-use crate::method::Method;
+use crate::method::{Arithmetic, Method};
 use crate::scene::{Hit, Scene};
 use crate::sink::{BandSink, DrawSink, RowSink, TraceSink};
 use crate::stepping::Stepper;
@@ -303,10 +304,35 @@ where
 }
 
 impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'_, N, C, L, P, D> {
+    /// The arithmetic a whole-image frame of this render uses: the integer kernel where
+    /// the method asks for it and its per-frame rule admits the scene and camera
+    /// (see [`Arithmetic::Integer`]), `F32` otherwise.
+    #[must_use]
+    pub fn arithmetic(&self) -> Arithmetic {
+        let full = Rectangle::new(Point::zero(), self.camera.size());
+        let integer = self.method.arithmetic == Arithmetic::Integer
+            && !Scene::<N, L, P, D>::FEATURES
+            && fixed::IntFrame::new(self.scene, self.camera, self.options, full, Point::zero()).is_ok();
+        if integer {
+            Arithmetic::Integer
+        } else {
+            Arithmetic::F32
+        }
+    }
+
     /// The frame through the one dispatch: the part of the image at `offset` that
     /// `clip` shows, into `sink`.
     #[inline(always)]
     fn render<K: RowSink>(&self, clip: Rectangle, offset: Point, sink: &mut K) -> Result<(), K::Error> {
+        // The arithmetic, once per frame: the integer kernel where its rule admits the
+        // frame (never for scenes with lights, planes or mirrors), else the f32 method.
+        if self.method.arithmetic == Arithmetic::Integer && !Scene::<N, L, P, D>::FEATURES {
+            match fixed::IntFrame::new(self.scene, self.camera, self.options, clip, offset) {
+                Ok(frame) => return fixed::draw_rows(&frame, sink),
+                Err(fixed::Refusal::Invisible) => return Ok(()),
+                Err(fixed::Refusal::Bounds) => {}
+            }
+        }
         dispatch(
             self.method,
             Frame {

@@ -62,15 +62,16 @@
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use heapless::Vec;
+use heapless::{Vec, VecView};
 
 use crate::camera::Camera;
 use crate::math::EDGE_TOLERANCE;
 use crate::render::{Options, Sample};
 use crate::scanline::{ColorRuns, PixelRow};
-use crate::scene::{Hit, Scene};
+use crate::scene::Hit;
 use crate::sink::RowSink;
 use crate::span::{Margin, Silhouette};
+use crate::sphere::Sphere;
 use crate::vec3::Vec3;
 
 /// Largest `|d|` (`2²⁶`): `a = |d|² ≤ 2⁵²`, `x`, `y`, `F` are `i32`.
@@ -95,6 +96,11 @@ pub(crate) struct IntSphere {
     lx_s: i64,
     /// `ρ = round(λ·r)`.
     rho: i32,
+    /// The root's shift `h` (`D ≤ a·ρ² < 2³²⁺²ʰ`) and the shade division's `q`
+    /// (`(a >> p)·ρ >> q < 2¹⁵` for every pixel's `a`): fixed per frame, so the pixel
+    /// loop counts no leading zeros (the Cortex-M0 has no `CLZ`).
+    h: u32,
+    q: u32,
     /// `c = |ℓ|² − ρ²` (> 0).
     c: i64,
     /// `A₂ = ℓx² − c`, the discriminant's `x²` coefficient, and its constant second
@@ -102,14 +108,15 @@ pub(crate) struct IntSphere {
     a2: i64,
     dd: i128,
     /// The object colour's channels.
-    rgb: [u32; 3],
+    rgb: [u8; 3],
     /// Where on the image its rays can hit it (the `f32` silhouette, enlarged to cover
     /// the quantisation's 1/16 pixel).
     silhouette: Silhouette,
 }
 
-/// The integer kernel's per-frame constants.
-pub(crate) struct IntFrame<'a, const N: usize> {
+/// The integer kernel's per-frame constants. Not generic over the scene's capacity:
+/// one copy of the kernel serves every `Scene<N>` of a firmware.
+pub(crate) struct IntFrame<'a> {
     camera: &'a Camera,
     /// `k` of `x = 2ᵏ·(2i + 1 − W)`.
     k: u32,
@@ -119,7 +126,7 @@ pub(crate) struct IntFrame<'a, const N: usize> {
     p: u32,
     /// `λ = 2ᵉ` as a float (for the trace path's `t` only).
     lambda: f32,
-    spheres: Vec<IntSphere, N>,
+    spheres: &'a [IntSphere],
     background: Rgb888,
     i0: u32,
     i1: u32,
@@ -138,21 +145,54 @@ pub(crate) enum Refusal {
 }
 
 /// The rule's frame-wide choices.
-struct Plan<const N: usize> {
+struct Plan {
     k: u32,
     f: i32,
     p: u32,
     e: i32,
-    spheres: Vec<IntSphere, N>,
 }
 
-impl<'a, const N: usize> IntFrame<'a, N> {
+/// Draws a frame of a scene without lights, planes or mirrors with the integer kernel,
+/// or returns `None` (nothing drawn) where its rule does not take the frame.
+///
+/// Out of line: its per-sphere buffers live in its own stack frame, never beside the
+/// `f32` path's (which runs only after this has returned).
+#[inline(never)]
+pub(crate) fn render<const N: usize, K: RowSink>(
+    spheres: &[Sphere],
+    background: Rgb888,
+    camera: &Camera,
+    options: Options,
+    clip: Rectangle,
+    offset: Point,
+    sink: &mut K,
+) -> Option<Result<(), K::Error>> {
+    let mut int_spheres: Vec<IntSphere, N> = Vec::new();
+    let mut active: Vec<Active<'_>, N> = Vec::new();
+    match IntFrame::new(
+        int_spheres.as_mut_view(),
+        spheres,
+        background,
+        camera,
+        options,
+        clip,
+        offset,
+    ) {
+        Ok(frame) => Some(draw_rows(&frame, active.as_mut_view(), sink)),
+        Err(Refusal::Invisible) => Some(Ok(())),
+        Err(Refusal::Bounds) => None,
+    }
+}
+
+impl<'a> IntFrame<'a> {
     /// The per-frame rule and the integer picture: `Err(Bounds)` where the integer
     /// kernel's bounds (module docs) do not keep every silhouette within 1/16 pixel and
     /// every shade factor within 2⁻⁹, or its magnitudes do not fit.
     #[inline(never)]
-    pub(crate) fn new<const L: usize, const P: usize, const D: usize>(
-        scene: &Scene<N, L, P, D>,
+    pub(crate) fn new(
+        buf: &'a mut VecView<IntSphere>,
+        scene: &[Sphere],
+        background: Rgb888,
         camera: &'a Camera,
         options: Options,
         clip: Rectangle,
@@ -167,7 +207,7 @@ impl<'a, const N: usize> IntFrame<'a, N> {
                 .min(i64::from(i32::MAX) + 1);
             (lo < hi).then(|| ((lo - i64::from(origin)) as u32, (hi - i64::from(origin)) as u32))
         };
-        let plan = plan(scene, camera, options).ok_or(Refusal::Bounds)?;
+        let plan = plan(scene, camera, options, buf).ok_or(Refusal::Bounds)?;
         let (i0, i1) =
             span(offset.x, size.width, clip.top_left.x, clip.size.width).ok_or(Refusal::Invisible)?;
         let (j0, j1) =
@@ -178,8 +218,8 @@ impl<'a, const N: usize> IntFrame<'a, N> {
             f: plan.f,
             p: plan.p,
             lambda: libm::ldexpf(1.0, plan.e),
-            spheres: plan.spheres,
-            background: scene.background(),
+            spheres: buf,
+            background,
             i0,
             i1,
             j0,
@@ -208,14 +248,15 @@ fn fit_exponent(x: f64, limit: f64) -> i32 {
 }
 
 /// The rule and the integer picture (module docs), or `None`.
-fn plan<const N: usize, const L: usize, const P: usize, const D: usize>(
-    scene: &Scene<N, L, P, D>,
+fn plan(
+    scene: &[Sphere],
     camera: &Camera,
     options: Options,
-) -> Option<Plan<N>> {
+    spheres: &mut VecView<IntSphere>,
+) -> Option<Plan> {
     let (pw, ph) = (camera.pixel_width(), camera.pixel_height());
     // Square pixels only: x and y share one unit.
-    if pw != ph || Scene::<N, L, P, D>::FEATURES {
+    if pw != ph {
         return None;
     }
     let size = camera.size();
@@ -242,7 +283,7 @@ fn plan<const N: usize, const L: usize, const P: usize, const D: usize>(
     };
     // λ: the finest unit that keeps every |ℓ| + ρ ≤ 2²⁵.
     let mut l_max = 0.0f64;
-    for s in scene.spheres() {
+    for s in scene {
         let lv = s.center - eye;
         let l2 = dot(lv, lv);
         if !(l2.is_finite() && s.radius.is_finite()) {
@@ -256,9 +297,9 @@ fn plan<const N: usize, const L: usize, const P: usize, const D: usize>(
         0
     };
     let lambda = libm::ldexp(1.0, e);
-    let mut spheres = Vec::new();
+    spheres.clear();
     let s_col = libm::ldexp(2.0, k) as i64; // the column step s = 2ᵏ⁺¹
-    for (index, s) in scene.spheres().iter().enumerate() {
+    for (index, s) in scene.iter().enumerate() {
         let lv = s.center - eye;
         let q = |x: f64| libm::round(x * lambda);
         let (lx, ly, lz, rho) = (
@@ -279,8 +320,20 @@ fn plan<const N: usize, const L: usize, const P: usize, const D: usize>(
         }
         // The silhouette's bound (f64 from the exact c).
         let edge = 1.725 * px_per_rad / libm::sqrt(c as f64) + focal_edge;
-        // The shade factor's bound.
-        let shade_err = 1.0 / 16384.0 + libm::ldexp(1.0, p) / (f * rho) + 1.0 / 8192.0 + 1.37 / rho;
+        // The root's shift h (D ≤ a·ρ² ≤ (d_max·ρ)² < 2³²⁺²ʰ) and the division's q
+        // ((d_max² >> p)·ρ >> q < 2¹⁵).
+        let h = ((ceil_log2(d_max * d_max * rho * rho) - 32).max(0) + 1) / 2;
+        let den_max = libm::ldexp(d_max * d_max, -p) * rho;
+        let q = (ceil_log2(den_max + 1.0) - 15).max(0);
+        // The smallest divisor (a ≥ F²) after the shift, ≥ 1.
+        let den_min = libm::floor(libm::floor(libm::ldexp(f * f, -p)) * rho / libm::ldexp(1.0, q));
+        // The shade factor's bound: root (F·2ʰ⁺¹/(a·ρ), a ≥ F²), T's shift, the
+        // division (2/den_min + 2⁻¹⁶) and the sphere's quantisation.
+        let shade_err = libm::ldexp(2.0, h) / (f * rho)
+            + libm::ldexp(1.0, p) / (f * rho)
+            + 2.0 / den_min
+            + 1.0 / 65536.0
+            + 1.37 / rho;
         if !(edge <= f64::from(EDGE_TOLERANCE) && shade_err <= SHADE_BUDGET) {
             return None;
         }
@@ -299,14 +352,12 @@ fn plan<const N: usize, const L: usize, const P: usize, const D: usize>(
             lz: lz as i32,
             lx_s: lxi * s_col,
             rho: rho as i32,
+            h: h as u32,
+            q: q as u32,
             c,
             a2,
             dd: 2 * i128::from(a2) * i128::from(s_col * s_col),
-            rgb: [
-                u32::from(s.color.r()),
-                u32::from(s.color.g()),
-                u32::from(s.color.b()),
-            ],
+            rgb: [s.color.r(), s.color.g(), s.color.b()],
             silhouette,
         });
     }
@@ -315,7 +366,6 @@ fn plan<const N: usize, const L: usize, const P: usize, const D: usize>(
         f: f as i32,
         p: p as u32,
         e,
-        spheres,
     })
 }
 
@@ -339,31 +389,26 @@ pub(crate) fn isqrt32(mut v: u32) -> u32 {
     r
 }
 
-/// An approximate `√v` of a `u128`: `v` shifted right by an even `2h` until it fits
-/// 32 bits, its exact [`isqrt32`], shifted back. Error bound: `0 ≤ √v − isqrt(v) <
-/// 2^(h+1)` with `h = max(0, ⌈(bits(v) − 32)/2⌉)`; exact below 2³².
+/// An approximate `√v`: `v` shifted right by `2h`, its exact [`isqrt32`], shifted
+/// back, for `v < 2³²⁺²ʰ`. Error bound: `0 ≤ √v − isqrt(v, h) < 2^(h+1)`.
 #[inline(always)]
-pub(crate) fn isqrt(v: u128) -> u64 {
-    let bits = 128 - v.leading_zeros();
-    let h = bits.saturating_sub(31) / 2;
+pub(crate) fn isqrt(v: u128, h: u32) -> u64 {
     u64::from(isqrt32((v >> (2 * h)) as u32)) << h
 }
 
-/// `n·(−w)` in Q16 from `num = ℓz·a − F·T` and `den = a·ρ > 0`, clamped to
-/// `[0, 2¹⁶]`: both shifted right until `den < 2¹⁵` (≥ 2¹⁴), then one 32-bit division.
-/// Error bound: `≤ 2⁻¹³` (the shifted divisor's relative `2⁻¹⁴`, the truncations').
+/// `n·(−w)` in Q16 from `num = ℓz·a − F·T` and `den = a·ρ > 0` (both `≥ 0` and
+/// `< 2⁶³`), clamped to `[0, 2¹⁶]`: both shifted right by `q` (`den >> q < 2¹⁵`), then
+/// one 32-bit division. Error bound: `≤ 2/(den >> q) + 2⁻¹⁶` (the truncations and the
+/// quotient's floor).
 #[inline(always)]
-pub(crate) fn nz_q16(num: i64, den: i64) -> u32 {
+pub(crate) fn nz_q16(num: i64, den: i64, q: u32) -> u32 {
     if num <= 0 {
         return 0;
     }
     if num >= den {
         return 1 << 16;
     }
-    // num < den: both shifted by the same amount.
-    let bits = 64 - (den as u64).leading_zeros();
-    let sh = bits.saturating_sub(15);
-    let (n, d) = ((num >> sh) as u32, (den >> sh) as u32);
+    let (n, d) = ((num >> q) as u32, (den >> q) as u32);
     if d == 0 {
         return 0;
     }
@@ -374,15 +419,15 @@ pub(crate) fn nz_q16(num: i64, den: i64) -> u32 {
 /// Lab #1's `clamp(n_z, 0.3, 1)` in Q16 (`0.3·2¹⁶ = 19660.8`, taken as 19661) and the
 /// channels `round(c·k)`.
 #[inline(always)]
-fn shade(rgb: [u32; 3], nz: u32) -> Rgb888 {
+fn shade(rgb: [u8; 3], nz: u32) -> Rgb888 {
     const AMBIENT_Q16: u32 = 19_661;
     let k = nz.max(AMBIENT_Q16);
-    let ch = |c: u32| ((c * k + (1 << 15)) >> 16) as u8;
+    let ch = |c: u8| ((u32::from(c) * k + (1 << 15)) >> 16) as u8;
     Rgb888::new(ch(rgb[0]), ch(rgb[1]), ch(rgb[2]))
 }
 
 /// A sphere whose span meets the current row, with its forward differences.
-struct Active<'s> {
+pub(crate) struct Active<'s> {
     lo: u32,
     len: u32,
     /// The discriminant at the next column of the span and its first difference.
@@ -395,8 +440,9 @@ struct Active<'s> {
 
 /// Draws the frame's visible rows into the sink.
 #[inline(never)]
-pub(crate) fn draw_rows<const N: usize, K: RowSink>(
-    frame: &IntFrame<'_, N>,
+fn draw_rows<'s, K: RowSink>(
+    frame: &IntFrame<'s>,
+    active: &mut VecView<Active<'s>>,
     sink: &mut K,
 ) -> Result<(), K::Error> {
     let size = frame.camera.size();
@@ -404,13 +450,12 @@ pub(crate) fn draw_rows<const N: usize, K: RowSink>(
     let s = 2i32 << frame.k;
     let width = frame.i1 - frame.i0;
     let f = i64::from(frame.f);
-    let mut active: Vec<Active<'_>, N> = Vec::new();
     for j in frame.j0..frame.j1 {
         let y = (h - 1 - 2 * j as i32) << frame.k;
         // α = y² + F² ≤ |d|² ≤ 2⁵².
         let alpha = i64::from(y) * i64::from(y) + f * f;
         let x0 = (2 * frame.i0 as i32 + 1 - w) << frame.k;
-        let (lo_all, hi_all) = activate(frame, j, y, alpha, &mut active);
+        let (lo_all, hi_all) = activate(frame, j, y, alpha, active);
         let area = Rectangle::new(
             Point::new(
                 frame.offset.x.wrapping_add(frame.i0 as i32),
@@ -418,9 +463,11 @@ pub(crate) fn draw_rows<const N: usize, K: RowSink>(
             ),
             Size::new(width, 1),
         );
+        // a = x² + α and its first difference 2xs + s² at the first column.
+        let (xw, sw) = (i64::from(x0), i64::from(s));
         let row = IntRow {
             frame,
-            active: &mut active,
+            active,
             lo_all,
             hi_all,
             i: frame.i0,
@@ -428,6 +475,9 @@ pub(crate) fn draw_rows<const N: usize, K: RowSink>(
             j,
             x: x0,
             s,
+            a: xw * xw + alpha,
+            da: 2 * xw * sw + sw * sw,
+            dda: 2 * sw * sw,
             alpha,
         };
         sink.row(area, row)?;
@@ -438,12 +488,12 @@ pub(crate) fn draw_rows<const N: usize, K: RowSink>(
 /// Row `j`'s active spheres, each with `D`, `Δ` and `b` evaluated directly at its
 /// first visible column (exact), and the union of their spans.
 #[inline(never)]
-fn activate<'s, const N: usize>(
-    frame: &'s IntFrame<'_, N>,
+fn activate<'s>(
+    frame: &IntFrame<'s>,
     j: u32,
     y: i32,
     alpha: i64,
-    active: &mut Vec<Active<'s>, N>,
+    active: &mut VecView<Active<'s>>,
 ) -> (u32, u32) {
     active.clear();
     let width = frame.camera.size().width;
@@ -482,26 +532,50 @@ fn activate<'s, const N: usize>(
 }
 
 /// One row of the integer kernel as a sink takes it.
-struct IntRow<'r, 's, 'c, const N: usize> {
-    frame: &'s IntFrame<'c, N>,
-    active: &'r mut [Active<'s>],
+struct IntRow<'r, 's, 'c> {
+    frame: &'s IntFrame<'c>,
+    active: &'r mut [Active<'c>],
     lo_all: u32,
     hi_all: u32,
     i: u32,
     end: u32,
     j: u32,
-    /// The current column's `x`, its step `s` and the row's `α = y² + F²`.
+    /// The current column's `x` and its step `s`; `a = |d|²` (`≤ 2⁵²`) at the current
+    /// column, stepped exactly like the discriminant (`a += Δa; Δa += 2s²`).
     x: i32,
     s: i32,
+    a: i64,
+    da: i64,
+    dda: i64,
+    /// The row's `α = y² + F²`.
     alpha: i64,
 }
 
-impl<'s, const N: usize> IntRow<'_, 's, '_, N> {
+impl<'c> IntRow<'_, '_, 'c> {
+    /// One column to the right: `x`, and `a` by its exact differences.
+    #[inline(always)]
+    fn step(&mut self) {
+        self.i += 1;
+        self.x += self.s;
+        self.a += self.da;
+        self.da += self.dda;
+    }
+
+    /// `n` columns to the right (the background before the spans), `a` and its
+    /// difference evaluated directly at the new column.
+    fn skip(&mut self, n: u32) {
+        self.i += n;
+        self.x += n as i32 * self.s;
+        let (x, s) = (i64::from(self.x), i64::from(self.s));
+        self.a = x * x + self.alpha;
+        self.da = 2 * x * s + s * s;
+    }
+
     /// Column `i` (at `self.x`): the closest sphere hit (sphere, `T`) and its colour.
     /// Advances every active sphere that holds `i` by one column.
     #[inline(always)]
-    fn trace(&mut self, i: u32) -> (Option<(&'s IntSphere, i64)>, Rgb888) {
-        let mut best: Option<(&'s IntSphere, i64)> = None;
+    fn trace(&mut self, i: u32) -> (Option<(&'c IntSphere, i64)>, Rgb888) {
+        let mut best: Option<(&'c IntSphere, i64)> = None;
         for act in self.active.iter_mut() {
             if i.wrapping_sub(act.lo) < act.len {
                 let (disc, b) = (act.disc, act.b);
@@ -510,7 +584,7 @@ impl<'s, const N: usize> IntRow<'_, 's, '_, N> {
                 act.delta += sp.dd;
                 act.b = b + sp.lx_s;
                 if disc >= 0 {
-                    let t = b - isqrt(disc as u128) as i64;
+                    let t = b - isqrt(disc as u128, sp.h) as i64;
                     if best.is_none_or(|(_, bt)| t < bt) {
                         best = Some((sp, t));
                     }
@@ -519,12 +593,11 @@ impl<'s, const N: usize> IntRow<'_, 's, '_, N> {
         }
         let color = match best {
             Some((sp, t)) => {
-                let x = i64::from(self.x);
                 let p = self.frame.p;
                 // a and T shifted by p: a >> p < 2³¹, products < 2⁵⁷.
-                let a = (x * x + self.alpha) >> p;
+                let a = self.a >> p;
                 let num = i64::from(sp.lz) * a - i64::from(self.frame.f) * (t >> p);
-                shade(sp.rgb, nz_q16(num, a * i64::from(sp.rho)))
+                shade(sp.rgb, nz_q16(num, a * i64::from(sp.rho), sp.q))
             }
             None => self.frame.background,
         };
@@ -532,7 +605,7 @@ impl<'s, const N: usize> IntRow<'_, 's, '_, N> {
     }
 }
 
-impl<const N: usize> PixelRow for IntRow<'_, '_, '_, N> {
+impl PixelRow for IntRow<'_, '_, '_> {
     fn samples(self) -> impl Iterator<Item = Sample> {
         IntSamples(self)
     }
@@ -546,8 +619,7 @@ impl<const N: usize> PixelRow for IntRow<'_, '_, '_, N> {
         };
         let before = lo - self.i;
         let after = self.end - hi;
-        self.x += (before as i32) * self.s;
-        self.i = lo;
+        self.skip(before);
         self.end = hi;
         ColorRuns {
             background: self.frame.background,
@@ -560,9 +632,9 @@ impl<const N: usize> PixelRow for IntRow<'_, '_, '_, N> {
 }
 
 /// A row's traced colours.
-struct IntColors<'r, 's, 'c, const N: usize>(IntRow<'r, 's, 'c, N>);
+struct IntColors<'r, 's, 'c>(IntRow<'r, 's, 'c>);
 
-impl<const N: usize> Iterator for IntColors<'_, '_, '_, N> {
+impl Iterator for IntColors<'_, '_, '_> {
     type Item = Rgb888;
 
     #[inline(always)]
@@ -573,8 +645,7 @@ impl<const N: usize> Iterator for IntColors<'_, '_, '_, N> {
             return None;
         }
         let (_, color) = row.trace(i);
-        row.i += 1;
-        row.x += row.s;
+        row.step();
         Some(color)
     }
 
@@ -587,9 +658,9 @@ impl<const N: usize> Iterator for IntColors<'_, '_, '_, N> {
 /// A row's samples (the trace path, [`Render::trace`](crate::Render::trace)): the
 /// colour and hit of the integer kernel, the direction and `t` converted to `f32` for
 /// the caller (off the drawing path).
-struct IntSamples<'r, 's, 'c, const N: usize>(IntRow<'r, 's, 'c, N>);
+struct IntSamples<'r, 's, 'c>(IntRow<'r, 's, 'c>);
 
-impl<const N: usize> Iterator for IntSamples<'_, '_, '_, N> {
+impl Iterator for IntSamples<'_, '_, '_> {
     type Item = Sample;
 
     fn next(&mut self) -> Option<Sample> {
@@ -608,16 +679,14 @@ impl<const N: usize> Iterator for IntSamples<'_, '_, '_, N> {
         let hit = best.map(|(sp, t)| {
             // The integer ray's t (λ units, integer d) as the caller's: the hit's
             // distance T/a·|d_int|/λ along the f32 direction.
-            let x = f64::from(row.x);
-            let a = x * x + row.alpha as f64;
+            let a = row.a as f64;
             let dist = (t as f64 / libm::sqrt(a) / f64::from(row.frame.lambda)) as f32;
             Hit {
                 index: sp.index,
                 t: dist / direction.length(),
             }
         });
-        row.i += 1;
-        row.x += row.s;
+        row.step();
         Some(Sample {
             pixel: Point::new(i as i32, row.j as i32),
             direction,
@@ -650,7 +719,8 @@ mod tests {
     #[test]
     fn isqrt_bound() {
         let mut vs = std::vec::Vec::new();
-        for b in 0..110u32 {
+        // The kernel's discriminants are below 2¹⁰⁶ (roots below 2⁵³: no u64 overflow).
+        for b in 0..106u32 {
             let p = 1u128 << b;
             vs.extend([p, p - 1, p + 1, p | (p >> 1), (p << 1) - 1]);
         }
@@ -660,20 +730,24 @@ mod tests {
             x ^= x >> 7;
             x ^= x << 17;
             let y = x.rotate_left(17) ^ 0x5555;
-            vs.push(((u128::from(x) << 64) | u128::from(y)) >> (x % 127));
+            vs.push(((u128::from(x) << 64) | u128::from(y)) >> (22 + x % 106));
         }
         for v in vs {
             let bits = 128 - v.leading_zeros();
-            let h = ((i32::try_from(bits).unwrap() - 32).max(0) + 1) / 2;
-            let got = isqrt(v);
-            // Exact check in integers: got² ≤ v < (got + 2^(h+1))².
-            assert!(u128::from(got) * u128::from(got) <= v, "{v}: {got} too large");
-            let hi = u128::from(got) + (1u128 << (h + 1));
-            assert!(hi * hi > v, "{v}: {got} below √v by 2^(h+1) or more, h {h}");
+            // The smallest admissible h, and larger ones (a frame's h fits its largest D).
+            let h0 = (bits.max(32) - 32).div_ceil(2);
+            for h in [h0, h0 + 1, h0 + 7] {
+                let got = isqrt(v, h);
+                // Exact check in integers: got² ≤ v < (got + 2^(h+1))².
+                assert!(u128::from(got) * u128::from(got) <= v, "{v}: {got} too large");
+                let hi = u128::from(got) + (1u128 << (h + 1));
+                assert!(hi * hi > v, "{v}: {got} below √v by 2^(h+1) or more, h {h}");
+            }
         }
     }
 
-    /// `nz_q16` within 2⁻¹³ of the exact quotient over the divisor's whole range.
+    /// `nz_q16` within `2/(den >> q) + 2⁻¹⁶` of the exact quotient, over the divisor's
+    /// whole range and shifts that leave it 15 down to 6 bits.
     #[test]
     fn nz_bound() {
         let mut x = 0x2545_f491_4f6c_dd1du64;
@@ -684,14 +758,20 @@ mod tests {
             let den = ((x >> 3) >> (x % 50)).max(1) as i64;
             let frac = (x % 10_007) as f64 / 10_007.0;
             let num = (den as f64 * frac) as i64;
-            let got = f64::from(nz_q16(num, den)) / 65536.0;
-            let exact = num as f64 / den as f64;
-            assert!(
-                (got - exact).abs() <= 1.0 / 8192.0,
-                "{num}/{den}: {got} vs {exact}"
-            );
+            let bits = 64 - den.leading_zeros();
+            for keep in [15, 11, 6] {
+                let q = bits.saturating_sub(keep);
+                let d = (den >> q) as f64;
+                let got = f64::from(nz_q16(num, den, q)) / 65536.0;
+                let exact = num as f64 / den as f64;
+                let bound = 2.0 / d + 1.0 / 65536.0;
+                assert!(
+                    (got - exact).abs() <= bound,
+                    "{num}/{den} q {q}: {got} vs {exact}"
+                );
+            }
         }
-        assert_eq!(nz_q16(-5, 10), 0);
-        assert_eq!(nz_q16(10, 10), 1 << 16);
+        assert_eq!(nz_q16(-5, 10, 0), 0);
+        assert_eq!(nz_q16(10, 10, 0), 1 << 16);
     }
 }

@@ -312,7 +312,16 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
         let full = Rectangle::new(Point::zero(), self.camera.size());
         let integer = self.method.arithmetic == Arithmetic::Integer
             && !Scene::<N, L, P, D>::FEATURES
-            && fixed::IntFrame::new(self.scene, self.camera, self.options, full, Point::zero()).is_ok();
+            && fixed::IntFrame::new(
+                heapless::Vec::<_, N>::new().as_mut_view(),
+                self.scene.spheres(),
+                self.scene.background(),
+                self.camera,
+                self.options,
+                full,
+                Point::zero(),
+            )
+            .is_ok();
         if integer {
             Arithmetic::Integer
         } else {
@@ -327,10 +336,11 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
         // The arithmetic, once per frame: the integer kernel where its rule admits the
         // frame (never for scenes with lights, planes or mirrors), else the f32 method.
         if self.method.arithmetic == Arithmetic::Integer && !Scene::<N, L, P, D>::FEATURES {
-            match fixed::IntFrame::new(self.scene, self.camera, self.options, clip, offset) {
-                Ok(frame) => return fixed::draw_rows(&frame, sink),
-                Err(fixed::Refusal::Invisible) => return Ok(()),
-                Err(fixed::Refusal::Bounds) => {}
+            let (spheres, background) = (self.scene.spheres(), self.scene.background());
+            if let Some(done) =
+                fixed::render::<N, K>(spheres, background, self.camera, self.options, clip, offset, sink)
+            {
+                return done;
             }
         }
         dispatch(

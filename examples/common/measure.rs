@@ -1,8 +1,8 @@
 //! The measurement every QEMU firmware example runs (`qemu_cortex_m4`, `qemu_cortex_m0`,
 //! `qemu_rv32`): a platform supplies an instruction counter, a stack painter and an
 //! output channel ([`Platform`]); this module renders every standard Lab #1 scene with
-//! every method of `Method::ALL` into a [`PixelHash`] at 240×240 and prints one line per
-//! scene and method in the format `examples/common/qemu_output.rs` parses:
+//! every method of `Method::ALL` (and, on chips without an FPU, `Method::INTEGER`) into
+//! a [`PixelHash`] at 240×240 and prints one line per scene and method in the format `examples/common/qemu_output.rs` parses:
 //!
 //! ```text
 //! hash lab incremental/robust/exact 0x0123456789abcdef pixels 57600 instr 3456789 ipp 60.0 stack 312
@@ -33,6 +33,14 @@ use embedded_graphics::primitives::Rectangle;
 use embedded_raytracer::{hash::PixelHash, math, Camera, CameraParams, Method, Options, Render, Scene};
 
 use crate::scenes;
+
+/// Whether the Lab #1 scenes are measured with the integer kernel
+/// ([`Method::INTEGER`]) after `Method::ALL`: on the chips without an FPU (Cortex-M0,
+/// RV32IMC), for which it is made.
+pub const INTEGER_TOO: bool = cfg!(any(
+    all(target_arch = "arm", not(target_abi = "eabihf")),
+    target_arch = "riscv32"
+));
 
 /// Every scene is rendered at this size (its own camera otherwise).
 pub const SIZE: Size = Size::new(240, 240);
@@ -354,7 +362,10 @@ impl<P: Platform> Run<P> {
         let Some(camera) = self.camera(name, params) else {
             return;
         };
-        for method in Method::ALL {
+        for method in Method::ALL
+            .into_iter()
+            .chain(INTEGER_TOO.then_some(Method::INTEGER))
+        {
             // Timed pass (the counter's interrupt on).
             let mut hash = PixelHash::new(SIZE);
             let instr = self.timed(|| render(scene, &camera, method, &mut hash));

@@ -99,13 +99,12 @@ pub(crate) struct IntSphere {
     /// The root's shift `h` (`D ≤ a·ρ² < 2³²⁺²ʰ`) and the shade division's `q`
     /// (`(a >> p)·ρ >> q < 2¹⁵` for every pixel's `a`): fixed per frame, so the pixel
     /// loop counts no leading zeros (the Cortex-M0 has no `CLZ`).
-    h: u32,
-    q: u32,
+    h: u8,
+    q: u8,
     /// `c = |ℓ|² − ρ²` (> 0).
     c: i64,
-    /// `A₂ = ℓx² − c`, the discriminant's `x²` coefficient, and its constant second
-    /// difference `2·A₂·s²`.
-    a2: i64,
+    /// `2·A₂·s²`, the discriminant's constant second difference (`A₂ = ℓx² − c`, its
+    /// `x²` coefficient, is formed per row).
     dd: i128,
     /// The object colour's channels.
     rgb: [u8; 3],
@@ -352,10 +351,9 @@ fn plan(
             lz: lz as i32,
             lx_s: lxi * s_col,
             rho: rho as i32,
-            h: h as u32,
-            q: q as u32,
+            h: h as u8,
+            q: q as u8,
             c,
-            a2,
             dd: 2 * i128::from(a2) * i128::from(s_col * s_col),
             rgb: [s.color.r(), s.color.g(), s.color.b()],
             silhouette,
@@ -515,7 +513,8 @@ fn activate<'s>(
         let beta = i64::from(sp.ly) * i64::from(y) + i64::from(sp.lz) * i64::from(frame.f);
         let a1 = 2 * i128::from(sp.lx) * i128::from(beta);
         let a0 = i128::from(beta) * i128::from(beta) - i128::from(sp.c) * i128::from(alpha);
-        let (a2, xw) = (i128::from(sp.a2), i128::from(x));
+        let xw = i128::from(x);
+        let a2 = i128::from(i64::from(sp.lx) * i64::from(sp.lx) - sp.c);
         let disc = (a2 * xw + a1) * xw + a0;
         // Δ(x) = D(x + s) − D(x) = A₂(2xs + s²) + A₁s.
         let delta = a2 * (2 * xw * s + s * s) + a1 * s;
@@ -584,7 +583,7 @@ impl<'c> IntRow<'_, '_, 'c> {
                 act.delta += sp.dd;
                 act.b = b + sp.lx_s;
                 if disc >= 0 {
-                    let t = b - isqrt(disc as u128, sp.h) as i64;
+                    let t = b - isqrt(disc as u128, u32::from(sp.h)) as i64;
                     if best.is_none_or(|(_, bt)| t < bt) {
                         best = Some((sp, t));
                     }
@@ -597,7 +596,7 @@ impl<'c> IntRow<'_, '_, 'c> {
                 // a and T shifted by p: a >> p < 2³¹, products < 2⁵⁷.
                 let a = self.a >> p;
                 let num = i64::from(sp.lz) * a - i64::from(self.frame.f) * (t >> p);
-                shade(sp.rgb, nz_q16(num, a * i64::from(sp.rho), sp.q))
+                shade(sp.rgb, nz_q16(num, a * i64::from(sp.rho), u32::from(sp.q)))
             }
             None => self.frame.background,
         };

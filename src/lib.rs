@@ -161,7 +161,7 @@ pub use error::{
 pub use light::Light;
 pub use lit::SecondaryOrigin;
 pub use material::Material;
-pub use method::{Arithmetic, Method, SphereTest, Sqrt, Stepping};
+pub use method::{Arithmetic, Method, SphereTest, Sqrt, Stepping, FPU_LESS};
 pub use plane::Plane;
 pub use render::{Options, Render, Sample};
 pub use scene::{Hit, Scene, Settings, MAX_DEPTH};

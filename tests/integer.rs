@@ -41,3 +41,187 @@ fn standard_scenes_against_reference() {
         }
     }
 }
+
+use embedded_graphics::prelude::*;
+use embedded_raytracer::{Scene, Sphere, Vec3};
+
+/// One case: whether the rule takes the integer kernel, and its metrics against the
+/// reference (of whatever the render drew).
+fn case<const N: usize>(scene: &Scene<N>, params: CameraParams) -> (Arithmetic, reference::Metrics) {
+    let camera = params.build().unwrap();
+    let render = Render::<_, Rgb888>::new(scene, &camera).with_method(Method::INTEGER);
+    let m = reference::compare(&render, &reference::render(scene, &camera));
+    (render.arithmetic(), m)
+}
+
+fn camera(eye: Vec3, fov_deg: f32, size: Size) -> CameraParams {
+    CameraParams::new(
+        eye,
+        Vec3::ZERO,
+        Vec3::new(0.0, 1.0, 0.0),
+        fov_deg.to_radians(),
+        size,
+    )
+}
+
+/// Where the rule takes the integer kernel it draws what the reference draws: no
+/// coverage error, shades within one level.
+fn exact_where_chosen(what: &str, chosen: Arithmetic, m: &reference::Metrics) {
+    if chosen == Arithmetic::Integer {
+        assert_eq!(m.coverage_errors, 0, "{what}: {m:?}");
+        assert!(m.shade_max <= 1, "{what}: {m:?}");
+    }
+}
+
+/// The last value of a sweep the rule still takes, given the sweep in increasing order
+/// of difficulty; asserts that it stops once and for all.
+fn last_chosen(points: &[(f64, Arithmetic)]) -> Option<f64> {
+    let last = points.iter().rposition(|(_, a)| *a == Arithmetic::Integer)?;
+    assert!(
+        points[..=last].iter().all(|(_, a)| *a == Arithmetic::Integer),
+        "the rule takes the frame again after refusing it: {points:?}"
+    );
+    Some(points[last].0)
+}
+
+/// Distance/radius: one sphere filling half of a 64×64 image, ever farther and
+/// smaller (16 ratios 10^(k/4) from 10; a narrower field of view than the last is
+/// below the camera's `MIN_PIXEL_SIZE`). The rule's shade bound needs `ρ = λ·r` of
+/// about a thousand units, and `λ·|L| ≤ 2²⁵`: the integer kernel is taken up to
+/// 10^4.25 ≈ 17,783 and refused from 10^4.5 (measured), exact up to there.
+#[test]
+fn distance_radius_limit() {
+    let mut points = Vec::new();
+    for k in 4..=19 {
+        let ratio = 10f64.powf(f64::from(k) / 4.0);
+        let dist = 5.0f32;
+        let radius = (f64::from(dist) / ratio) as f32;
+        // Field of view: the sphere spans half the image.
+        let fov = (4.0 * (radius / dist).atan()).to_degrees();
+        let scene = Scene::<1>::from_array(
+            [Sphere::new(Vec3::ZERO, radius, Rgb888::new(200, 150, 90))],
+            Rgb888::BLACK,
+        );
+        let (chosen, m) = case(&scene, camera(Vec3::new(0.0, 0.0, dist), fov, Size::new(64, 64)));
+        println!(
+            "distance/radius {ratio:.0}: {chosen}, {} coverage errors, shade max {}",
+            m.coverage_errors, m.shade_max
+        );
+        exact_where_chosen(&format!("ratio {ratio}"), chosen, &m);
+        points.push((ratio, chosen));
+    }
+    let last = last_chosen(&points).expect("chosen at distance/radius 10");
+    assert!(
+        (17_000.0..18_000.0).contains(&last),
+        "last distance/radius chosen: {last}"
+    );
+}
+
+/// Scene extent: the lab's yellow sphere (radius 0.35, 3.5 from the eye) with a second
+/// sphere ever farther behind it (scaled to keep its size on screen). One `λ` serves
+/// the frame and must hold the farthest sphere, so the near one's `ρ` shrinks: the rule
+/// takes the frame up to an extent (farthest |L| + r) of 19,280 near-sphere radii and
+/// refuses it from 34,286 (measured), exact up to there.
+#[test]
+fn scene_extent_limit() {
+    let mut points = Vec::new();
+    for k in 0..=16 {
+        let far = 10f32.powf(1.0 + k as f32 / 4.0);
+        let scene = Scene::<2>::from_array(
+            [
+                Sphere::new(Vec3::new(0.5, -0.9, 1.6), 0.35, Rgb888::new(255, 255, 64)),
+                Sphere::new(
+                    Vec3::new(-1.0, 0.5, 5.0 - far),
+                    far * 0.2,
+                    Rgb888::new(64, 255, 255),
+                ),
+            ],
+            Rgb888::BLACK,
+        );
+        let (chosen, m) = case(&scene, camera(Vec3::new(0.0, 0.0, 5.0), 60.0, Size::new(96, 96)));
+        let extent = f64::from(far) * 1.2 / 0.35;
+        println!(
+            "extent/radius {extent:.0}: {chosen}, {} coverage errors, shade max {}",
+            m.coverage_errors, m.shade_max
+        );
+        exact_where_chosen(&format!("far {far}"), chosen, &m);
+        points.push((extent, chosen));
+    }
+    let last = last_chosen(&points).expect("chosen at the lab's extent");
+    assert!(
+        (19_000.0..20_000.0).contains(&last),
+        "last extent/radius chosen: {last}"
+    );
+}
+
+/// Field of view: the lab scene from 10° to 170° (square pixels, 96×96). The shade's
+/// one division keeps about 15 bits of `a·ρ` at the image's corner and fewer towards its
+/// centre, where `a` is smaller by `1 + R²/Fz²` (R the corner's distance, Fz the focal
+/// length): the rule takes the frame up to 130° and refuses it from 140° (measured),
+/// exact up to there.
+#[test]
+fn field_of_view_limit() {
+    let file = load("lab");
+    let mut points = Vec::new();
+    for fov in (10..=170).step_by(10) {
+        let params = CameraParams {
+            fov_y: (fov as f32).to_radians(),
+            size: Size::new(96, 96),
+            ..*file.camera.params()
+        };
+        let (chosen, m) = case(&file.scene, params);
+        println!(
+            "fov {fov}°: {chosen}, {} coverage errors, shade max {}",
+            m.coverage_errors, m.shade_max
+        );
+        exact_where_chosen(&format!("fov {fov}"), chosen, &m);
+        points.push((f64::from(fov), chosen));
+    }
+    let last = last_chosen(&points).expect("chosen at 10°");
+    assert_eq!(last, 130.0, "last field of view chosen");
+}
+
+/// Resolution: the lab scene from 16×16 to 8192×8192 pixels (the integer pixel unit
+/// 2⁻ᵏ shrinks as the image grows, so `|d| ≤ 2²⁶` holds at every size up to
+/// `MAX_RESOLUTION`): chosen at every size. The reference comparison runs on a strip
+/// of rows through the spheres (the whole image at the small sizes).
+#[test]
+fn resolution_never_limits() {
+    let file = load("lab");
+    for n in [16u32, 64, 256, 1024, 4096, 8192] {
+        let params = CameraParams {
+            size: Size::new(n, n),
+            ..*file.camera.params()
+        };
+        let camera = params.build().unwrap();
+        let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(Method::INTEGER);
+        assert_eq!(render.arithmetic(), Arithmetic::Integer, "{n}×{n}");
+        if n <= 256 {
+            let m = reference::compare(&render, &reference::render(&file.scene, &camera));
+            exact_where_chosen(&format!("{n}×{n}"), Arithmetic::Integer, &m);
+        }
+    }
+}
+
+/// Non-square pixels, an eye inside a sphere and a sphere beside the eye are drawn in
+/// `f32` (the rule refuses them), and the picture is then exactly the `f32` method's.
+#[test]
+fn refused_frames_are_the_f32_methods() {
+    let file = load("lab");
+    let wide = CameraParams {
+        fov_x: Some(1.5),
+        ..*file.camera.params()
+    };
+    let inside = CameraParams {
+        eye: Vec3::new(0.0, 0.0, 0.5),
+        ..*file.camera.params()
+    };
+    for params in [wide, inside] {
+        let camera = params.build().unwrap();
+        let int = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(Method::INTEGER);
+        assert_eq!(int.arithmetic(), Arithmetic::F32);
+        let f32_method = Method::INTEGER.with_arithmetic(Arithmetic::F32);
+        let float = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(f32_method);
+        assert!(common::trace(int) == common::trace(float));
+    }
+}

@@ -9,7 +9,8 @@ mod common;
 use common::{load, SCENES};
 use embedded_graphics::geometry::Size;
 use embedded_graphics::pixelcolor::Rgb888;
-use embedded_raytracer::{reference, Arithmetic, CameraParams, Method, Render};
+use embedded_raytracer::reference::sweeps::{integer_limit, integer_sweep, IntegerSweep};
+use embedded_raytracer::{reference, Arithmetic, CameraParams, Method, Render, Vec3};
 
 /// Every standard scene at its own size and at 240×240: the rule's choice, and where
 /// it takes the integer kernel, 0 coverage errors and ≤ 1 level against the reference.
@@ -42,28 +43,6 @@ fn standard_scenes_against_reference() {
     }
 }
 
-use embedded_graphics::prelude::*;
-use embedded_raytracer::{Scene, Sphere, Vec3};
-
-/// One case: whether the rule takes the integer kernel, and its metrics against the
-/// reference (of whatever the render drew).
-fn case<const N: usize>(scene: &Scene<N>, params: CameraParams) -> (Arithmetic, reference::Metrics) {
-    let camera = params.build().unwrap();
-    let render = Render::<_, Rgb888>::new(scene, &camera).with_method(Method::INTEGER);
-    let m = reference::compare(&render, &reference::render(scene, &camera));
-    (render.arithmetic(), m)
-}
-
-fn camera(eye: Vec3, fov_deg: f32, size: Size) -> CameraParams {
-    CameraParams::new(
-        eye,
-        Vec3::ZERO,
-        Vec3::new(0.0, 1.0, 0.0),
-        fov_deg.to_radians(),
-        size,
-    )
-}
-
 /// Where the rule takes the integer kernel it draws what the reference draws: no
 /// coverage error, shades within one level.
 fn exact_where_chosen(what: &str, chosen: Arithmetic, m: &reference::Metrics) {
@@ -73,47 +52,49 @@ fn exact_where_chosen(what: &str, chosen: Arithmetic, m: &reference::Metrics) {
     }
 }
 
-/// The last value of a sweep the rule still takes, given the sweep in increasing order
-/// of difficulty; asserts that it stops once and for all.
-fn last_chosen(points: &[(f64, Arithmetic)]) -> Option<f64> {
-    let last = points.iter().rposition(|(_, a)| *a == Arithmetic::Integer)?;
-    assert!(
-        points[..=last].iter().all(|(_, a)| *a == Arithmetic::Integer),
-        "the rule takes the frame again after refusing it: {points:?}"
+/// A sweep of `reference::sweeps::integer_sweep`: exact wherever chosen, and the rule
+/// stops taking the frame once and for all; `(last taken, first refused)`.
+fn limits(kind: IntegerSweep) -> (f64, f64) {
+    let points = integer_sweep(kind);
+    for p in &points {
+        println!(
+            "{} {:.0}: integer {}, {:?}",
+            kind.name(),
+            p.value,
+            p.integer,
+            p.metrics.coverage_errors
+        );
+        let chosen = if p.integer {
+            Arithmetic::Integer
+        } else {
+            Arithmetic::F32
+        };
+        exact_where_chosen(&format!("{} {}", kind.name(), p.value), chosen, &p.metrics);
+    }
+    let (last, refused) = integer_limit(&points);
+    let (last, refused) = (
+        last.expect("taken at the sweep's start"),
+        refused.expect("refused at its end"),
     );
-    Some(points[last].0)
+    assert!(last < refused, "{kind:?}: taken again after refusing: {points:?}");
+    (last, refused)
 }
 
 /// Distance/radius: one sphere filling half of a 64×64 image, ever farther and
 /// smaller (16 ratios 10^(k/4) from 10; a narrower field of view than the last is
 /// below the camera's `MIN_PIXEL_SIZE`). The rule's shade bound needs `ρ = λ·r` of
 /// about a thousand units, and `λ·|L| ≤ 2²⁵`: the integer kernel is taken up to
-/// 10^4.25 ≈ 17,783 and refused from 10^4.5 (measured), exact up to there.
+/// 10^4.25 ≈ 17,783 and refused from 10^4.5 ≈ 31,623 (measured), exact up to there.
 #[test]
 fn distance_radius_limit() {
-    let mut points = Vec::new();
-    for k in 4..=19 {
-        let ratio = 10f64.powf(f64::from(k) / 4.0);
-        let dist = 5.0f32;
-        let radius = (f64::from(dist) / ratio) as f32;
-        // Field of view: the sphere spans half the image.
-        let fov = (4.0 * (radius / dist).atan()).to_degrees();
-        let scene = Scene::<1>::from_array(
-            [Sphere::new(Vec3::ZERO, radius, Rgb888::new(200, 150, 90))],
-            Rgb888::BLACK,
-        );
-        let (chosen, m) = case(&scene, camera(Vec3::new(0.0, 0.0, dist), fov, Size::new(64, 64)));
-        println!(
-            "distance/radius {ratio:.0}: {chosen}, {} coverage errors, shade max {}",
-            m.coverage_errors, m.shade_max
-        );
-        exact_where_chosen(&format!("ratio {ratio}"), chosen, &m);
-        points.push((ratio, chosen));
-    }
-    let last = last_chosen(&points).expect("chosen at distance/radius 10");
+    let (last, refused) = limits(IntegerSweep::DistanceRadius);
     assert!(
         (17_000.0..18_000.0).contains(&last),
-        "last distance/radius chosen: {last}"
+        "last distance/radius taken: {last}"
+    );
+    assert!(
+        (31_000.0..32_000.0).contains(&refused),
+        "first refused: {refused}"
     );
 }
 
@@ -124,61 +105,25 @@ fn distance_radius_limit() {
 /// refuses it from 34,286 (measured), exact up to there.
 #[test]
 fn scene_extent_limit() {
-    let mut points = Vec::new();
-    for k in 0..=16 {
-        let far = 10f32.powf(1.0 + k as f32 / 4.0);
-        let scene = Scene::<2>::from_array(
-            [
-                Sphere::new(Vec3::new(0.5, -0.9, 1.6), 0.35, Rgb888::new(255, 255, 64)),
-                Sphere::new(
-                    Vec3::new(-1.0, 0.5, 5.0 - far),
-                    far * 0.2,
-                    Rgb888::new(64, 255, 255),
-                ),
-            ],
-            Rgb888::BLACK,
-        );
-        let (chosen, m) = case(&scene, camera(Vec3::new(0.0, 0.0, 5.0), 60.0, Size::new(96, 96)));
-        let extent = f64::from(far) * 1.2 / 0.35;
-        println!(
-            "extent/radius {extent:.0}: {chosen}, {} coverage errors, shade max {}",
-            m.coverage_errors, m.shade_max
-        );
-        exact_where_chosen(&format!("far {far}"), chosen, &m);
-        points.push((extent, chosen));
-    }
-    let last = last_chosen(&points).expect("chosen at the lab's extent");
+    let (last, refused) = limits(IntegerSweep::Extent);
     assert!(
         (19_000.0..20_000.0).contains(&last),
-        "last extent/radius chosen: {last}"
+        "last extent/radius taken: {last}"
+    );
+    assert!(
+        (34_000.0..35_000.0).contains(&refused),
+        "first refused: {refused}"
     );
 }
 
-/// Field of view: the lab scene from 10° to 170° (square pixels, 96×96). The shade's
-/// one division keeps about 15 bits of `a·ρ` at the image's corner and fewer towards its
-/// centre, where `a` is smaller by `1 + R²/Fz²` (R the corner's distance, Fz the focal
-/// length): the rule takes the frame up to 130° and refuses it from 140° (measured),
-/// exact up to there.
+/// Field of view: two lab spheres from 10° to 170° (square pixels, 96×96). The shade's
+/// one division keeps about 15 bits of `a·ρ` at the image's corner and fewer towards
+/// its centre, where `a` is smaller by `1 + R²/Fz²` (R the corner's distance, Fz the
+/// focal length): the rule takes the frame up to 130° and refuses it from 140°
+/// (measured), exact up to there.
 #[test]
 fn field_of_view_limit() {
-    let file = load("lab");
-    let mut points = Vec::new();
-    for fov in (10..=170).step_by(10) {
-        let params = CameraParams {
-            fov_y: (fov as f32).to_radians(),
-            size: Size::new(96, 96),
-            ..*file.camera.params()
-        };
-        let (chosen, m) = case(&file.scene, params);
-        println!(
-            "fov {fov}°: {chosen}, {} coverage errors, shade max {}",
-            m.coverage_errors, m.shade_max
-        );
-        exact_where_chosen(&format!("fov {fov}"), chosen, &m);
-        points.push((f64::from(fov), chosen));
-    }
-    let last = last_chosen(&points).expect("chosen at 10°");
-    assert_eq!(last, 130.0, "last field of view chosen");
+    assert_eq!(limits(IntegerSweep::FieldOfView), (130.0, 140.0));
 }
 
 /// Resolution: the lab scene from 16×16 to 8192×8192 pixels (the integer pixel unit

@@ -65,13 +65,16 @@ use embedded_graphics::primitives::Rectangle;
 use heapless::{Vec, VecView};
 
 use crate::camera::Camera;
+use crate::intersect::TestStrategy;
+use crate::math::SqrtFn;
 use crate::math::EDGE_TOLERANCE;
 use crate::render::{Options, Sample};
 use crate::scanline::{ColorRuns, PixelRow};
-use crate::scene::Hit;
+use crate::scene::{Hit, Scene};
 use crate::sink::RowSink;
 use crate::span::{Margin, Silhouette};
 use crate::sphere::Sphere;
+use crate::stepping::Stepper;
 use crate::vec3::Vec3;
 
 /// Largest `|d|` (`2²⁶`): `a = |d|² ≤ 2⁵²`, `x`, `y`, `F` are `i32`.
@@ -149,6 +152,60 @@ struct Plan {
     f: i32,
     p: u32,
     e: i32,
+}
+
+/// Draws a frame of a scene without lights, planes or mirrors with the integer kernel
+/// where its rule takes the frame, else with the f32 method `S`, `T`, `Q`.
+///
+/// Out of line, and so are both paths: the f32 path's per-sphere constants and the
+/// integer kernel's are never on the stack together (a `Scene<64>` would not fit a
+/// 16 KiB Cortex-M0 otherwise).
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+pub(crate) fn render_or_f32<
+    const N: usize,
+    const L: usize,
+    const P: usize,
+    const D: usize,
+    K: RowSink,
+    S: Stepper,
+    T: TestStrategy,
+    Q: SqrtFn,
+>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    options: Options,
+    clip: Rectangle,
+    offset: Point,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    let (spheres, background) = (scene.spheres(), scene.background());
+    if let Some(done) = render::<N, K>(spheres, background, camera, options, clip, offset, sink) {
+        return done;
+    }
+    f32_frame::<N, L, P, D, K, S, T, Q>(scene, camera, options, clip, offset, sink)
+}
+
+/// The f32 method's frame, out of line (see [`render_or_f32`]).
+#[inline(never)]
+fn f32_frame<
+    const N: usize,
+    const L: usize,
+    const P: usize,
+    const D: usize,
+    K: RowSink,
+    S: Stepper,
+    T: TestStrategy,
+    Q: SqrtFn,
+>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    options: Options,
+    clip: Rectangle,
+    offset: Point,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    crate::frame::render::<N, L, P, D, K, S, T, Q>(scene, camera, options, clip, offset, sink)
 }
 
 /// Draws a frame of a scene without lights, planes or mirrors with the integer kernel,

@@ -335,14 +335,6 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
     fn render<K: RowSink>(&self, clip: Rectangle, offset: Point, sink: &mut K) -> Result<(), K::Error> {
         // The arithmetic, once per frame: the integer kernel where its rule admits the
         // frame (never for scenes with lights, planes or mirrors), else the f32 method.
-        if self.method.arithmetic == Arithmetic::Integer && !Scene::<N, L, P, D>::FEATURES {
-            let (spheres, background) = (self.scene.spheres(), self.scene.background());
-            if let Some(done) =
-                fixed::render::<N, K>(spheres, background, self.camera, self.options, clip, offset, sink)
-            {
-                return done;
-            }
-        }
         dispatch(
             self.method,
             Frame {
@@ -352,6 +344,7 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
                 clip,
                 offset,
                 sink,
+                integer: self.method.arithmetic == Arithmetic::Integer,
             },
         )
     }
@@ -365,6 +358,8 @@ struct Frame<'a, 'k, const N: usize, const L: usize, const P: usize, const D: us
     clip: Rectangle,
     offset: Point,
     sink: &'k mut K,
+    /// The integer kernel was asked for (Lab #1 scenes only).
+    integer: bool,
 }
 
 impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink> Visit
@@ -377,6 +372,17 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
         // scene-features path (lights, planes, mirrors).
         if Scene::<N, L, P, D>::FEATURES {
             lit::render::<N, L, P, D, K, S, T, Q>(
+                self.scene,
+                self.camera,
+                self.options,
+                self.clip,
+                self.offset,
+                self.sink,
+            )
+        } else if self.integer {
+            // The arithmetic, once per frame: the integer kernel where its rule takes the
+            // frame, else this f32 method (both out of line, so their stacks never add).
+            fixed::render_or_f32::<N, L, P, D, K, S, T, Q>(
                 self.scene,
                 self.camera,
                 self.options,

@@ -77,7 +77,10 @@ pub trait Platform {
 }
 
 /// The render under test, never inlined so that its whole frame lies below the
-/// measuring function's stack pointer.
+/// measuring function's stack pointer. An `f32` method (`Method::ALL`) is passed at
+/// run time; the integer kernel has its own function, [`render_integer`], with its
+/// method a constant, as a firmware would write it (a run-time method that may ask for
+/// either arithmetic links both for every method: twice the flash).
 #[inline(never)]
 fn render<const N: usize, const L: usize, const P: usize, const D: usize>(
     scene: &Scene<N, L, P, D>,
@@ -85,7 +88,22 @@ fn render<const N: usize, const L: usize, const P: usize, const D: usize>(
     method: Method,
     target: &mut PixelHash,
 ) {
-    let Ok(()) = Render::new(scene, camera).with_method(method).draw(target);
+    // The f32 fields only: the arithmetic is then a constant and the integer path is
+    // not linked here.
+    let f32_method = Method::new(method.stepping, method.sphere_test, method.sqrt);
+    let Ok(()) = Render::new(scene, camera).with_method(f32_method).draw(target);
+}
+
+/// [`render`] with [`Method::INTEGER`].
+#[inline(never)]
+fn render_integer<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    target: &mut PixelHash,
+) {
+    let Ok(()) = Render::new(scene, camera)
+        .with_method(Method::INTEGER)
+        .draw(target);
 }
 
 /// The render of a scene with lights, planes or mirrors under test, with its options;
@@ -366,15 +384,22 @@ impl<P: Platform> Run<P> {
             .into_iter()
             .chain(INTEGER_TOO.then_some(Method::INTEGER))
         {
+            let draw = |target: &mut PixelHash| {
+                if method == Method::INTEGER {
+                    render_integer(scene, &camera, target);
+                } else {
+                    render(scene, &camera, method, target);
+                }
+            };
             // Timed pass (the counter's interrupt on).
             let mut hash = PixelHash::new(SIZE);
-            let instr = self.timed(|| render(scene, &camera, method, &mut hash));
+            let instr = self.timed(|| draw(&mut hash));
             // Stack pass: the counter's interrupt off (it would push its frame onto the
             // render's stack), the counter keeps running. Ticks lost meanwhile are
             // harmless: only differences within one timed pass are used.
             self.platform.quiet(true);
             let mut again = PixelHash::new(SIZE);
-            let stack = stack_of(&self.platform, || render(scene, &camera, method, &mut again));
+            let stack = stack_of(&self.platform, || draw(&mut again));
             self.platform.quiet(false);
             self.report(name, method, "", &hash, &again, instr, stack);
         }

@@ -44,11 +44,14 @@
 //!
 //! Where `D ≥ 0` the hit distance's numerator `T = b − √D` (`t = T/a`, the same `a`
 //! for every sphere of the pixel) orders the spheres; [`isqrt`] has error `< 2^(h+1)`
-//! with `h = ⌈(bits(D) − 32)/2⌉`, and since `D ≤ a·ρ²` that is `< 4·√a·ρ·2⁻¹⁶`. Lab #1
-//! needs `n·(−w) = (ℓz − t·F)/ρ = (ℓz·a − F·T)/(a·ρ)`: formed in `i64` from `a` and `T`
-//! shifted right by the frame's `p` (so `a >> p < 2³¹`; the `ℓz/ρ` part is unchanged by
-//! it), then divided once in 32 bits ([`nz_q16`]). The shade factor's error against the
-//! quantised sphere is `≤ 2⁻¹⁴` (root) `+ 2ᵖ/(F·ρ)` (shift) `+ 2⁻¹³` (division); the
+//! with the sphere's per-frame shift `h = ⌈(bits(d_max²·ρ²) − 32)/2⌉` (`D ≤ a·ρ²`:
+//! about `4·|d|·ρ·2⁻¹⁶`). Lab #1 needs `n·(−w) = (ℓz − t·F)/ρ = (ℓz·a − F·T)/(a·ρ)`:
+//! formed in `i64` from `a` and `T` shifted right by the frame's `p` (so
+//! `a >> p < 2³¹`; the `ℓz/ρ` part is unchanged by it), then divided once in 32 bits
+//! after a per-frame shift `q` ([`nz_q16`]). The shade factor's error against the
+//! quantised sphere is `≤ 2ʰ⁺¹/(F·ρ)` (root, `a ≥ F²`) `+ 2ᵖ/(F·ρ)` (shift)
+//! `+ 2/((F² >> p)·ρ >> q) + 2⁻¹⁶` (division, smallest divisor at the image's
+//! centre); the
 //! quantisation turns the normal by at most `(√3/2 + ½)/ρ = 1.37/ρ` away from the
 //! silhouette (at a grazing hit the shade moves with the edge, which is within the
 //! edge bound). The rule takes the frame only where the sum is ≤ 2⁻⁹ (under one level
@@ -66,8 +69,7 @@ use heapless::{Vec, VecView};
 
 use crate::camera::Camera;
 use crate::intersect::TestStrategy;
-use crate::math::SqrtFn;
-use crate::math::EDGE_TOLERANCE;
+use crate::math::{SqrtFn, EDGE_TOLERANCE};
 use crate::render::{Options, Sample};
 use crate::scanline::{ColorRuns, PixelRow};
 use crate::scene::{Hit, Scene};

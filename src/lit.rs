@@ -494,7 +494,8 @@ impl<
             let mut count = 0;
             if floor_in_view {
                 for (k, sil) in sils.iter().enumerate().take(f.spheres.len()) {
-                    if let (Some((lo, hi)), Some(slot)) = (sil.row_span(j, f.i0, f.i1), row.spans.get(count)) {
+                    if let (Some((lo, hi)), Some(slot)) = (sil.row_span(j, f.i0, f.i1), row.spans.get(count))
+                    {
                         slot.set((k, lo, hi - lo));
                         count += 1;
                     }

@@ -333,8 +333,6 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
     /// `clip` shows, into `sink`.
     #[inline(always)]
     fn render<K: RowSink>(&self, clip: Rectangle, offset: Point, sink: &mut K) -> Result<(), K::Error> {
-        // The arithmetic, once per frame: the integer kernel where its rule admits the
-        // frame (never for scenes with lights, planes or mirrors), else the f32 method.
         dispatch(
             self.method,
             Frame {

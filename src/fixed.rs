@@ -51,11 +51,15 @@
 //! after a per-frame shift `q` ([`nz_q16`]). The shade factor's error against the
 //! quantised sphere is `≤ 2ʰ⁺¹/(F·ρ)` (root, `a ≥ F²`) `+ 2ᵖ/(F·ρ)` (shift)
 //! `+ 2/((F² >> p)·ρ >> q) + 2⁻¹⁶` (division, smallest divisor at the image's
-//! centre); the
-//! quantisation turns the normal by at most `(√3/2 + ½)/ρ = 1.37/ρ` away from the
-//! silhouette (at a grazing hit the shade moves with the edge, which is within the
-//! edge bound). The rule takes the frame only where the sum is ≤ 2⁻⁹ (under one level
-//! of 255, with room for the `f32` result's own rounding). Colours are
+//! centre), `+ (ℓz + ρ)·2ᵖ/(F²·ρ)` (the shift of `a` in `T/a`); the quantisation
+//! moves the sphere by `m ≤ √3/2 + ½` (its centre's and radius's rounding, measured
+//! per sphere and frame), which turns the normal by at most `m/ρ` where the hit's
+//! half-chord `h` is large and by `≈ m/h` near the rim: with the rest of the budget
+//! `β`, the hits with `h < g = m/β` form a ring `g²/(2ρ)` wide (λ units) along the
+//! silhouette, where the shade moves with the edge. The rule takes the frame only where
+//! the sum is < 2⁻⁹ (under one level of 255, with room for the `f32` result's own
+//! rounding) and that ring, added to the edge bound, is within 1/16 pixel: there the
+//! image is that of the sphere moved by less than 1/16 pixel. Colours are
 //! `(c·k + 2¹⁵) >> 16` with `k = max(n·(−w), 0.3)` in Q16.
 //!
 //! Where the rule does not hold (non-square pixels, an eye inside or beside a sphere,
@@ -359,13 +363,15 @@ fn plan(
     let s_col = libm::ldexp(2.0, k) as i64; // the column step s = 2ᵏ⁺¹
     for (index, s) in scene.iter().enumerate() {
         let lv = s.center - eye;
-        let q = |x: f64| libm::round(x * lambda);
-        let (lx, ly, lz, rho) = (
-            q(dot(lv, u)),
-            q(dot(lv, v)),
-            q(dot(lv, w)),
-            q(f64::from(s.radius)),
-        );
+        let exact = [dot(lv, u), dot(lv, v), dot(lv, w), f64::from(s.radius)].map(|x| x * lambda);
+        let [lx, ly, lz, rho] = exact.map(libm::round);
+        // How far the quantisation moved this sphere (λ units): its centre by `|ℓ − λL|`
+        // (≤ √3/2), its radius by `|ρ − λr|` (≤ ½); the f64 products and sums above err
+        // by far less than the 2⁻³⁰·(|ℓ| + ρ) added.
+        let sq = |x: f64| x * x;
+        let moved = libm::sqrt(sq(lx - exact[0]) + sq(ly - exact[1]) + sq(lz - exact[2]))
+            + (rho - exact[3]).abs()
+            + libm::ldexp(lx.abs() + ly.abs() + lz.abs() + rho, -30);
         // Wholly in front of the eye (every hit has t > 0, the eye is outside).
         if !(rho >= 1.0 && lz > rho) {
             return None;
@@ -389,10 +395,18 @@ fn plan(
         // division (2/den_min + 2⁻¹⁶) and the sphere's quantisation.
         let shade_err = libm::ldexp(2.0, h) / (f * rho)
             + libm::ldexp(1.0, p) / (f * rho)
+            + (lz + rho) * libm::ldexp(1.0, p) / (f * f * rho)
             + 2.0 / den_min
             + 1.0 / 65536.0
-            + 1.37 / rho;
-        if !(edge <= f64::from(EDGE_TOLERANCE) && shade_err <= SHADE_BUDGET) {
+            + moved / rho;
+        // The grazing ring: where the hit lies less than `g = moved/budget` (λ units)
+        // below the silhouette's rim, the quantisation can turn the normal by up to
+        // moved/g or more; the ring is `g²/(2ρ)` wide, and together with the edge's own
+        // bound it must stay within the edge tolerance (there the image is that of the
+        // sphere moved by less than 1/16 pixel).
+        let graze = moved / (SHADE_BUDGET - shade_err);
+        let ring = px_per_rad / libm::sqrt(c as f64) * graze * graze / (2.0 * rho);
+        if !(shade_err < SHADE_BUDGET && graze < rho && edge + ring <= f64::from(EDGE_TOLERANCE)) {
             return None;
         }
         let a2 = lxi * lxi - c;

@@ -33,10 +33,15 @@ fn standard_scenes_against_reference() {
                 "{name} {}x{}: {chosen}, coverage errors {}, shade max {}, color max {}, undecidable {}",
                 size.width, size.height, m.coverage_errors, m.shade_max, m.color_max, m.undecidable
             );
-            if chosen == Arithmetic::Integer {
-                assert_eq!(m.coverage_errors, 0, "{name} {size:?}: {m:?}");
-                assert!(m.shade_max <= 1, "{name} {size:?}: {m:?}");
-            }
+            // The rule takes every standard scene but `grazing` (the eye 0.023 above a
+            // sphere: its silhouette is not bounded).
+            let expected = if name == "grazing" {
+                Arithmetic::F32
+            } else {
+                Arithmetic::Integer
+            };
+            assert_eq!(chosen, expected, "{name} {size:?}");
+            exact_where_chosen(&format!("{name} {size:?}"), chosen, &m);
             assert_eq!(m.bad_samples, 0);
             assert_eq!(m.non_finite, 0);
         }
@@ -147,7 +152,7 @@ fn resolution_never_limits() {
     }
 }
 
-/// Non-square pixels, an eye inside a sphere and a sphere beside the eye are drawn in
+/// Non-square pixels and an eye inside a sphere are drawn in
 /// `f32` (the rule refuses them), and the picture is then exactly the `f32` method's.
 #[test]
 fn refused_frames_are_the_f32_methods() {
@@ -168,4 +173,46 @@ fn refused_frames_are_the_f32_methods() {
         let float = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(f32_method);
         assert!(common::trace(int) == common::trace(float));
     }
+}
+
+/// A small sphere at a wide angle beside a far, large one: one `λ` for the frame leaves
+/// the small sphere few units (`ρ` in the thousands), and its quantisation moves the
+/// shade of hits near its rim by more than a level (measured: 201 against the
+/// reference's 199 at pixel (27, 36) under a rule without the grazing ring). The rule
+/// refuses the frame, which is then exactly the `f32` method's; with the far sphere
+/// closer (a smaller extent) it takes the frame and stays within one level.
+#[test]
+fn grazing_ring_of_a_coarsely_quantised_sphere() {
+    use embedded_raytracer::{Scene, Sphere};
+    let scene_with = |far_z: f32, far_r: f32| {
+        let mut scene: Scene<2> = Scene::new(Rgb888::new(0, 0, 0));
+        for sphere in [
+            Sphere::new(Vec3::new(-2.469, 2.5, 1.5), 1.0, Rgb888::new(255, 255, 255)),
+            Sphere::new(Vec3::new(0.0, 0.0, far_z), far_r, Rgb888::new(200, 120, 60)),
+        ] {
+            scene.push(sphere).unwrap();
+        }
+        scene
+    };
+    let camera = CameraParams::new(
+        Vec3::new(0.0, 0.0, 5.0),
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        120f32.to_radians(),
+        Size::new(160, 160),
+    )
+    .build()
+    .unwrap();
+    let far = scene_with(5.0 - 8091.1, 404.6);
+    let int = Render::<_, Rgb888>::new(&far, &camera).with_method(Method::INTEGER);
+    assert_eq!(int.arithmetic(), Arithmetic::F32);
+    let f32_method = Method::INTEGER.with_arithmetic(Arithmetic::F32);
+    let float = Render::<_, Rgb888>::new(&far, &camera).with_method(f32_method);
+    assert!(common::trace(int) == common::trace(float));
+
+    let near = scene_with(5.0 - 80.911, 4.046);
+    let int = Render::<_, Rgb888>::new(&near, &camera).with_method(Method::INTEGER);
+    assert_eq!(int.arithmetic(), Arithmetic::Integer);
+    let m = reference::compare(&int, &reference::render(&near, &camera));
+    exact_where_chosen("near", Arithmetic::Integer, &m);
 }

@@ -136,6 +136,7 @@ pub mod plane;
 #[cfg(host_std)]
 pub mod reference;
 pub mod render;
+pub mod sampling;
 mod scanline;
 pub mod scene;
 #[cfg(host_std)]
@@ -163,6 +164,7 @@ pub use material::Material;
 pub use method::{Method, SphereTest, Sqrt, Stepping};
 pub use plane::Plane;
 pub use render::{Options, Render, Sample};
+pub use sampling::{Sampling, SamplingError, SubSamples};
 pub use scene::{Hit, Scene, Settings, MAX_DEPTH};
 pub use sphere::Sphere;
 pub use vec3::Vec3;

@@ -37,7 +37,8 @@ use crate::light::Light;
 use crate::material::Material;
 use crate::math::{sqrt_exact, SqrtFn, UNIT_ROUNDOFF};
 use crate::render::Options;
-use crate::scanline::{self, RowTracer};
+use crate::sampling::{Fnv, Ident, NoId, Rows};
+use crate::scanline::RowTracer;
 use crate::scene::Scene;
 use crate::shade::{channels, lab1_factor, Shader};
 use crate::sink::RowSink;
@@ -317,20 +318,33 @@ pub(crate) fn render<
     S: Stepper,
     T: TestStrategy,
     Q: SqrtFn,
+    G: Rows,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
-    clip: Rectangle,
+    (clip, rows): (Rectangle, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
     match options.secondary {
-        SecondaryOrigin::Convex => {
-            render_with::<N, L, P, D, K, S, T, Q, ConvexExit>(scene, camera, options, 0.0, clip, offset, sink)
-        }
-        SecondaryOrigin::Epsilon(eps) => render_with::<N, L, P, D, K, S, T, Q, EpsilonExit>(
-            scene, camera, options, eps, clip, offset, sink,
+        SecondaryOrigin::Convex => render_with::<N, L, P, D, K, S, T, Q, ConvexExit, G>(
+            scene,
+            camera,
+            options,
+            0.0,
+            (clip, rows),
+            offset,
+            sink,
+        ),
+        SecondaryOrigin::Epsilon(eps) => render_with::<N, L, P, D, K, S, T, Q, EpsilonExit, G>(
+            scene,
+            camera,
+            options,
+            eps,
+            (clip, rows),
+            offset,
+            sink,
         ),
     }
 }
@@ -346,12 +360,13 @@ fn render_with<
     T: TestStrategy,
     Q: SqrtFn,
     O: Exit,
+    G: Rows,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
     eps: f32,
-    clip: Rectangle,
+    (clip, rows): (Rectangle, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
@@ -374,7 +389,7 @@ fn render_with<
         scene,
         camera,
         options,
-        clip,
+        rows.clip(clip),
         offset,
         &mut spheres,
         others,
@@ -429,7 +444,7 @@ fn render_with<
         i0: frame.i0,
         i1: frame.i1,
     };
-    scanline::draw_rows::<N, K, S, T, Q, LitSphere, _>(&frame, sink, |j, lo, hi| {
+    rows.draw_rows::<N, K, S, T, Q, LitSphere, _>(&frame, sink, |j, lo, hi| {
         LitRow::<T, Q, O, N, L, P, D>::new(&lit, j, lo, hi)
     })
 }
@@ -447,6 +462,9 @@ struct LitRow<'f, 's, T: TestStrategy, Q, O, const N: usize, const L: usize, con
 
 /// No occluder cached.
 const NONE: Object = usize::MAX;
+
+/// A reflected ray's identity where it hits nothing.
+const REFLECTS_NOTHING: u32 = 0x9e37_79b9;
 
 impl<
         'f,
@@ -643,7 +661,15 @@ impl<
     /// The local colour at `p` (not rounded): Lab #1 without lights, otherwise
     /// ambient + diffuse + specular with a shadow ray per light.
     #[inline(always)]
-    fn local(&mut self, k: Object, s: &Surface, p: Vec3, dir: Vec3, column: Option<u32>) -> [f32; 3] {
+    fn local<I: Ident>(
+        &mut self,
+        k: Object,
+        s: &Surface,
+        p: Vec3,
+        dir: Vec3,
+        column: Option<u32>,
+        id: &mut I,
+    ) -> [f32; 3] {
         if L == 0 || self.f.lights.is_empty() {
             let kz = lab1_factor(s.lab_nz);
             return s.rgb.map(|c| c * kz);
@@ -673,7 +699,10 @@ impl<
             if f.shadows {
                 let o = O::start(p, l, f.eps);
                 let dist = if O::TESTS_SELF { dist - f.eps } else { dist };
-                if self.occluded(index, o, l, dist, k, s.inside, column) {
+                let blocked = self.occluded(index, o, l, dist, k, s.inside, column);
+                // Which lights reach the surface: a shadow boundary is an edge.
+                id.mix(2 * index as u32 + 1 + u32::from(blocked));
+                if blocked {
                     continue;
                 }
             }
@@ -712,6 +741,20 @@ impl<
     /// costs one call per pixel and halves the path's flash.
     #[inline(never)]
     fn color(&mut self, first: Option<(Object, f32)>, d: Vec3, i: u32) -> Rgb888 {
+        self.color_with::<NoId, true>(first, d, i, &mut NoId)
+    }
+
+    /// [`Self::color`] with the ray's identity (see [`RowTracer::identified`]) mixed
+    /// into `id`; `CULL`: the primary ray is column `i`'s centre ray, so the row's
+    /// shadow spans hold for it (a sub-pixel ray is not culled).
+    #[inline(always)]
+    fn color_with<I: Ident, const CULL: bool>(
+        &mut self,
+        first: Option<(Object, f32)>,
+        d: Vec3,
+        i: u32,
+        id: &mut I,
+    ) -> Rgb888 {
         let f = self.f;
         let mut acc = [0.0f32; 3];
         let mut weight = 1.0f32;
@@ -719,14 +762,23 @@ impl<
         let mut depth = 0u8;
         loop {
             let Some((k, t)) = hit else {
+                if depth > 0 {
+                    id.mix(REFLECTS_NOTHING);
+                }
                 add(&mut acc, weight, f.bg);
                 break;
             };
             let p = origin + dir * t;
             let s = self.surface(k, p, dir);
+            if I::KEPT && depth == 0 {
+                self.fine_checker(k, t, dir, id);
+            }
+            // The object, and its colour there (a checker cell).
+            id.mix(k as u32 + 1);
+            id.mix(s.rgb.iter().fold(0, |h, c| h.rotate_left(11) ^ c.to_bits()));
             // The shadow spans hold for the primary ray only.
-            let column = (depth == 0).then_some(i);
-            let local = self.local(k, &s, p, dir, column);
+            let column = (CULL && depth == 0).then_some(i);
+            let local = self.local(k, &s, p, dir, column, id);
             let r = if D == 0 { 0.0 } else { s.material.reflect };
             if !(r > 0.0) {
                 add(&mut acc, weight, local);
@@ -780,11 +832,53 @@ impl<
         i: u32,
         d: Vec3,
     ) -> (Option<(usize, f32)>, Rgb888) {
+        let best = self.primary::<true>(sphere_hit, i, d);
+        (best, self.color(best, d, i))
+    }
+
+    #[inline(always)]
+    fn identified(
+        &mut self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, LitSphere>)>,
+        i: u32,
+        d: Vec3,
+    ) -> (u32, Rgb888) {
+        let best = self.primary::<true>(sphere_hit, i, d);
+        self.color_identified::<true>(best, d, i)
+    }
+
+    #[inline(always)]
+    fn sub_sample(&mut self, sphere_hit: Option<(usize, f32, &'s FrameSphere<T, LitSphere>)>, d: Vec3) -> (u32, Rgb888) {
+        let best = self.primary::<false>(sphere_hit, 0, d);
+        self.color_identified::<false>(best, d, 0)
+    }
+}
+
+impl<
+        's,
+        T: TestStrategy,
+        Q: SqrtFn,
+        O: Exit,
+        const N: usize,
+        const L: usize,
+        const P: usize,
+        const D: usize,
+    > LitRow<'_, 's, T, Q, O, N, L, P, D>
+{
+    /// The closest hit of the primary ray `d`: the sphere hit, then the planes (with
+    /// `CULL`, only those whose row span holds column `i`).
+    #[inline(always)]
+    fn primary<const CULL: bool>(
+        &self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, LitSphere>)>,
+        i: u32,
+        d: Vec3,
+    ) -> Option<(Object, f32)> {
         let mut best = sphere_hit.map(|(k, t, _)| (k, t));
         let mut t_max = best.map_or(f32::INFINITY, |(_, t)| t);
         let n = self.f.spheres.len();
         for (k, (plane, &(lo, len))) in self.f.planes.iter().zip(&self.spans).enumerate() {
-            if i.wrapping_sub(lo) < len {
+            if !CULL || i.wrapping_sub(lo) < len {
                 // t = (q·n)/(d·n): positive where d·n has the sign of q·n.
                 let t = plane.s / d.dot(plane.n);
                 if t > 0.0 && t < t_max {
@@ -793,7 +887,37 @@ impl<
                 }
             }
         }
-        (best, self.color(best, d, i))
+        best
+    }
+
+    /// Whether the primary ray `dir` meeting object `k` at `t` sees a checker whose
+    /// cells are less than two pixel footprints wide (then `id.fine()`): moving to the
+    /// next pixel turns the ray by `du` (or `dv`), which moves its hit on the plane by
+    /// at most `t·|du|·(1 + |d|/|d·n|)`.
+    #[inline(always)]
+    fn fine_checker<I: Ident>(&self, k: Object, t: f32, dir: Vec3, id: &mut I) {
+        let f = self.f;
+        let Some(plane) = k.checked_sub(f.spheres.len()).and_then(|p| f.planes.get(p)) else {
+            return;
+        };
+        if plane.checker.is_none() {
+            return;
+        }
+        let step = f.camera.pixel_step().length().max(f.camera.scanline_step().length());
+        let dn = dir.dot(plane.n).abs();
+        let footprint = t * step * (1.0 + dir.length() / dn);
+        // NaN (a ray along the plane) fails the comparison: fine as well.
+        if !(footprint * plane.inv_size <= 0.5) {
+            id.fine();
+        }
+    }
+
+    /// [`Self::color_with`] with the identity: out of line, like [`Self::color`].
+    #[inline(never)]
+    fn color_identified<const CULL: bool>(&mut self, first: Option<(Object, f32)>, d: Vec3, i: u32) -> (u32, Rgb888) {
+        let mut id = Fnv(0, false);
+        let c = self.color_with::<Fnv, CULL>(first, d, i, &mut id);
+        (id.get(), c)
     }
 }
 

@@ -22,6 +22,7 @@ use crate::intersect::{TestStrategy, FD_ANCHOR_INTERVAL};
 use crate::lit::{self, SecondaryOrigin};
 use crate::math::SqrtFn;
 use crate::method::Method;
+use crate::sampling::{AdaptiveRows, CenterRows, GridRows, Rows, Sampling};
 use crate::scene::{Hit, Scene};
 use crate::sink::{BandSink, DrawSink, RowSink, TraceSink};
 use crate::stepping::Stepper;
@@ -58,6 +59,10 @@ pub struct Options {
     /// as a closest-hit search would — the benchmarks' literal baseline; no pixel
     /// changes.
     pub shadow_any_hit: bool,
+    /// Rays per pixel (default [`Sampling::Center`]: one, through the centre): a grid
+    /// of sub-pixel rays averaged in linear light, everywhere or only where an edge can
+    /// cross the pixel. Matched once per frame; see [`crate::sampling`].
+    pub sampling: Sampling,
 }
 
 impl Options {
@@ -67,6 +72,7 @@ impl Options {
         anchor_interval: FD_ANCHOR_INTERVAL,
         secondary: SecondaryOrigin::Convex,
         shadow_any_hit: true,
+        sampling: Sampling::Center,
     };
 }
 
@@ -89,6 +95,40 @@ impl Options {
     #[must_use]
     pub const fn with_secondary(mut self, secondary: SecondaryOrigin) -> Self {
         self.secondary = secondary;
+        self
+    }
+
+    /// The same options with `sampling` rays per pixel.
+    ///
+    /// ```
+    /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::{Rgb565, Rgb888}, prelude::*};
+    /// use embedded_raytracer::{Camera, Options, Render, Sampling, Scene, Sphere, Vec3};
+    ///
+    /// static SCENE: Scene<1> = Scene::from_array(
+    ///     [Sphere::new(Vec3::new(0.0, 0.0, 0.0), 1.0, Rgb888::new(255, 255, 255))],
+    ///     Rgb888::new(0, 0, 0),
+    /// );
+    /// let camera = Camera::new(
+    ///     Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0),
+    ///     0.5, Size::new(16, 16),
+    /// )?;
+    /// let sampling: Sampling = "adaptive:4".parse()?;
+    /// assert_eq!(sampling, Sampling::adaptive(4)?);
+    /// let mut display = MockDisplay::<Rgb565>::new();
+    /// Render::new(&SCENE, &camera)
+    ///     .with_options(Options::DEFAULT.with_sampling(sampling))
+    ///     .draw(&mut display)?;
+    /// // Inside the disc the centre ray alone; on its rim a grey between white and black.
+    /// assert_eq!(display.get_pixel(Point::new(8, 8)), Some(Rgb565::WHITE));
+    /// let rim = (0..16).filter_map(|i| display.get_pixel(Point::new(i, 8)))
+    ///     .filter(|c| *c != Rgb565::WHITE && *c != Rgb565::BLACK)
+    ///     .count();
+    /// assert!(rim >= 2, "{rim} grey pixels on row 8");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub const fn with_sampling(mut self, sampling: Sampling) -> Self {
+        self.sampling = sampling;
         self
     }
 
@@ -117,6 +157,10 @@ pub struct Sample {
     pub hit: Option<Hit>,
     /// The shaded colour.
     pub color: Rgb888,
+    /// The rays averaged into `color`: 1 for the centre ray alone, `n²` where
+    /// [`Sampling`] traced the pixel's grid (then `hit` is `None`: several rays have
+    /// no single hit).
+    pub rays: u32,
 }
 
 /// A scene seen through a camera with a method, ready to draw.
@@ -337,23 +381,38 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
     type Output = Result<(), K::Error>;
     #[inline(always)]
     fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Self::Output {
+        // The sampling, once per frame: `Center` is the one-ray row loop.
+        match self.options.sampling {
+            Sampling::Center => self.with_rows::<S, T, Q, _>(CenterRows),
+            Sampling::Grid(n) => self.with_rows::<S, T, Q, _>(GridRows(n.get())),
+            Sampling::Adaptive(n) => {
+                let clip = self.clip;
+                self.with_rows::<S, T, Q, _>(AdaptiveRows { n: n.get(), clip })
+            }
+        }
+    }
+}
+
+impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink> Frame<'_, '_, N, L, P, D, K> {
+    #[inline(always)]
+    fn with_rows<S: Stepper, T: TestStrategy, Q: SqrtFn, G: Rows>(self, rows: G) -> Result<(), K::Error> {
         // The scene's type decides the loop at compile time: Lab #1 on spheres, or the
         // scene-features path (lights, planes, mirrors).
         if Scene::<N, L, P, D>::FEATURES {
-            lit::render::<N, L, P, D, K, S, T, Q>(
+            lit::render::<N, L, P, D, K, S, T, Q, G>(
                 self.scene,
                 self.camera,
                 self.options,
-                self.clip,
+                (self.clip, rows),
                 self.offset,
                 self.sink,
             )
         } else {
-            frame::render::<N, L, P, D, K, S, T, Q>(
+            frame::render::<N, L, P, D, K, S, T, Q, G>(
                 self.scene,
                 self.camera,
                 self.options,
-                self.clip,
+                (self.clip, rows),
                 self.offset,
                 self.sink,
             )

@@ -59,10 +59,6 @@ pub struct Options {
     /// as a closest-hit search would — the benchmarks' literal baseline; no pixel
     /// changes.
     pub shadow_any_hit: bool,
-    /// Rays per pixel (default [`Sampling::Center`]: one, through the centre): a grid
-    /// of sub-pixel rays averaged in linear light, everywhere or only where an edge can
-    /// cross the pixel. Matched once per frame; see [`crate::sampling`].
-    pub sampling: Sampling,
 }
 
 impl Options {
@@ -72,7 +68,6 @@ impl Options {
         anchor_interval: FD_ANCHOR_INTERVAL,
         secondary: SecondaryOrigin::Convex,
         shadow_any_hit: true,
-        sampling: Sampling::Center,
     };
 }
 
@@ -95,40 +90,6 @@ impl Options {
     #[must_use]
     pub const fn with_secondary(mut self, secondary: SecondaryOrigin) -> Self {
         self.secondary = secondary;
-        self
-    }
-
-    /// The same options with `sampling` rays per pixel.
-    ///
-    /// ```
-    /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::{Rgb565, Rgb888}, prelude::*};
-    /// use embedded_raytracer::{Camera, Options, Render, Sampling, Scene, Sphere, Vec3};
-    ///
-    /// static SCENE: Scene<1> = Scene::from_array(
-    ///     [Sphere::new(Vec3::new(0.0, 0.0, 0.0), 1.0, Rgb888::new(255, 255, 255))],
-    ///     Rgb888::new(0, 0, 0),
-    /// );
-    /// let camera = Camera::new(
-    ///     Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0),
-    ///     0.5, Size::new(16, 16),
-    /// )?;
-    /// let sampling: Sampling = "adaptive:4".parse()?;
-    /// assert_eq!(sampling, Sampling::adaptive(4)?);
-    /// let mut display = MockDisplay::<Rgb565>::new();
-    /// Render::new(&SCENE, &camera)
-    ///     .with_options(Options::DEFAULT.with_sampling(sampling))
-    ///     .draw(&mut display)?;
-    /// // Inside the disc the centre ray alone; on its rim a grey between white and black.
-    /// assert_eq!(display.get_pixel(Point::new(8, 8)), Some(Rgb565::WHITE));
-    /// let rim = (0..16).filter_map(|i| display.get_pixel(Point::new(i, 8)))
-    ///     .filter(|c| *c != Rgb565::WHITE && *c != Rgb565::BLACK)
-    ///     .count();
-    /// assert!(rim >= 2, "{rim} grey pixels on row 8");
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
-    /// ```
-    #[must_use]
-    pub const fn with_sampling(mut self, sampling: Sampling) -> Self {
-        self.sampling = sampling;
         self
     }
 
@@ -193,6 +154,7 @@ pub struct Render<'a, const N: usize, C = Rgb888, const L: usize = 0, const P: u
     camera: &'a Camera,
     method: Method,
     options: Options,
+    sampling: Sampling,
     offset: Point,
     color: PhantomData<C>,
 }
@@ -206,6 +168,7 @@ impl<'a, const N: usize, C, const L: usize, const P: usize, const D: usize> Rend
             camera,
             method: Method::DEFAULT,
             options: Options::DEFAULT,
+            sampling: Sampling::Center,
             offset: Point::zero(),
             color: PhantomData,
         }
@@ -231,6 +194,48 @@ impl<'a, const N: usize, C, const L: usize, const P: usize, const D: usize> Rend
     pub const fn with_options(mut self, options: Options) -> Self {
         self.options = options;
         self
+    }
+
+    /// The same render with `sampling` rays per pixel (default [`Sampling::Center`]:
+    /// one, through the centre): a grid of sub-pixel rays averaged in linear light,
+    /// everywhere or only where an edge can cross the pixel. Matched once per frame;
+    /// see [`crate::sampling`]. A field of the render, not of [`Options`], so that a
+    /// render that never sets it links none of it, whatever its options.
+    ///
+    /// ```
+    /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::{Rgb565, Rgb888}, prelude::*};
+    /// use embedded_raytracer::{Camera, Render, Sampling, Scene, Sphere, Vec3};
+    ///
+    /// static SCENE: Scene<1> = Scene::from_array(
+    ///     [Sphere::new(Vec3::new(0.0, 0.0, 0.0), 1.0, Rgb888::new(255, 255, 255))],
+    ///     Rgb888::new(0, 0, 0),
+    /// );
+    /// let camera = Camera::new(
+    ///     Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0),
+    ///     0.5, Size::new(16, 16),
+    /// )?;
+    /// let sampling: Sampling = "adaptive:4".parse()?;
+    /// assert_eq!(sampling, Sampling::adaptive(4)?);
+    /// let mut display = MockDisplay::<Rgb565>::new();
+    /// Render::new(&SCENE, &camera).with_sampling(sampling).draw(&mut display)?;
+    /// // Inside the disc the centre ray alone; on its rim a grey between white and black.
+    /// assert_eq!(display.get_pixel(Point::new(8, 8)), Some(Rgb565::WHITE));
+    /// let rim = (0..16).filter_map(|i| display.get_pixel(Point::new(i, 8)))
+    ///     .filter(|c| *c != Rgb565::WHITE && *c != Rgb565::BLACK)
+    ///     .count();
+    /// assert!(rim >= 2, "{rim} grey pixels on row 8");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub const fn with_sampling(mut self, sampling: Sampling) -> Self {
+        self.sampling = sampling;
+        self
+    }
+
+    /// The sampling in use.
+    #[must_use]
+    pub const fn sampling(&self) -> Sampling {
+        self.sampling
     }
 
     /// The options in use.
@@ -357,6 +362,7 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
                 scene: self.scene,
                 camera: self.camera,
                 options: self.options,
+                sampling: self.sampling,
                 clip,
                 offset,
                 sink,
@@ -370,6 +376,7 @@ struct Frame<'a, 'k, const N: usize, const L: usize, const P: usize, const D: us
     scene: &'a Scene<N, L, P, D>,
     camera: &'a Camera,
     options: Options,
+    sampling: Sampling,
     clip: Rectangle,
     offset: Point,
     sink: &'k mut K,
@@ -382,7 +389,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
     #[inline(always)]
     fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Self::Output {
         // The sampling, once per frame: `Center` is the one-ray row loop.
-        match self.options.sampling {
+        match self.sampling {
             Sampling::Center => self.with_rows::<S, T, Q, _>(CenterRows),
             Sampling::Grid(n) => self.with_rows::<S, T, Q, _>(GridRows(n.get())),
             Sampling::Adaptive(n) => {

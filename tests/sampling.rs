@@ -15,11 +15,7 @@ use embedded_graphics::pixelcolor::{BinaryColor, Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_raytracer::dither::{dither, Bayer, DitherExt};
-use embedded_raytracer::{Camera, Method, Options, Render, Sampling, SamplingError, Scene, Sphere, Vec3};
-
-fn with(s: Sampling) -> Options {
-    Options::DEFAULT.with_sampling(s)
-}
+use embedded_raytracer::{Camera, Method, Render, Sampling, SamplingError, Scene, Sphere, Vec3};
 
 /// The camera of a scene file at another size.
 fn resized(camera: &Camera, size: Size) -> Camera {
@@ -65,11 +61,11 @@ fn same_everywhere<const N: usize, const L: usize, const P: usize, const D: usiz
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     method: Method,
-    options: Options,
+    sampling: Sampling,
     what: &str,
 ) -> Vec<Rgb888> {
     let size = camera.size();
-    let render = Render::new(scene, camera).with_method(method).with_options(options);
+    let render = Render::new(scene, camera).with_method(method).with_sampling(sampling);
     let whole = colors(render);
     let (w, h) = (size.width as i32, size.height as i32);
     // Drawn into a target: the same as traced.
@@ -93,7 +89,7 @@ fn same_everywhere<const N: usize, const L: usize, const P: usize, const D: usiz
     // Bands of 5 rows, in Rgb565.
     let render565 = Render::<N, Rgb565, L, P, D>::new(scene, camera)
         .with_method(method)
-        .with_options(options);
+        .with_sampling(sampling);
     for j0 in (0..h).step_by(5) {
         let j1 = (j0 + 5).min(h);
         let mut band = vec![Rgb565::new(1, 2, 3); (w * (j1 - j0)) as usize];
@@ -136,11 +132,11 @@ fn check_scene<const N: usize, const L: usize, const P: usize, const D: usize>(
         let base = Render::new(scene, camera).with_method(method);
         let center = colors(base);
         // Center is the default render, bit for bit.
-        assert_eq!(colors(base.with_options(with(Sampling::Center))), center, "{name} {method}");
+        assert_eq!(colors(base.with_sampling(Sampling::Center)), center, "{name} {method}");
         let mut grids = Vec::new();
         for &s in samplings {
             let what = format!("{name} {method} {s}");
-            let pixels = same_everywhere(scene, camera, method, with(s), &what);
+            let pixels = same_everywhere(scene, camera, method, s, &what);
             match s {
                 Sampling::Grid(n) => grids.push((n, pixels)),
                 Sampling::Adaptive(n) => {
@@ -148,7 +144,7 @@ fn check_scene<const N: usize, const L: usize, const P: usize, const D: usize>(
                         .iter()
                         .find(|(m, _)| *m == n)
                         .map(|(_, g)| g.clone())
-                        .unwrap_or_else(|| colors(base.with_options(with(Sampling::Grid(n)))));
+                        .unwrap_or_else(|| colors(base.with_sampling(Sampling::Grid(n))));
                     adaptive_is_grid_or_center(&center, &grid, &pixels, &what);
                 }
                 Sampling::Center => {}
@@ -201,8 +197,8 @@ fn a_sphere_smaller_than_a_pixel_is_never_missed() {
         }
         let render = Render::new(&scene, &camera);
         let center = colors(render);
-        let grid = colors(render.with_options(with(Sampling::grid(4).unwrap())));
-        let adaptive = colors(render.with_options(with(Sampling::adaptive(4).unwrap())));
+        let grid = colors(render.with_sampling(Sampling::grid(4).unwrap()));
+        let adaptive = colors(render.with_sampling(Sampling::adaptive(4).unwrap()));
         for (k, (g, a)) in grid.iter().zip(&adaptive).enumerate() {
             if *g != Rgb888::BLACK {
                 seen += 1;
@@ -224,8 +220,8 @@ fn adaptive_is_within_two_levels_of_the_grid_on_the_standard_scenes() {
         name: &str,
     ) {
         let render = Render::new(scene, camera);
-        let grid = colors(render.with_options(with(Sampling::grid(4).unwrap())));
-        let adaptive = colors(render.with_options(with(Sampling::adaptive(4).unwrap())));
+        let grid = colors(render.with_sampling(Sampling::grid(4).unwrap()));
+        let adaptive = colors(render.with_sampling(Sampling::adaptive(4).unwrap()));
         let diff = |a: Rgb888, b: Rgb888| {
             [(a.r(), b.r()), (a.g(), b.g()), (a.b(), b.b())]
                 .iter()
@@ -259,5 +255,5 @@ fn sampling_choices_parse_display_and_refuse() {
         assert_eq!(bad.parse::<Sampling>(), Err(SamplingError::Syntax), "{bad:?}");
     }
     assert!(Sampling::grid(2).is_ok() && Sampling::adaptive(4).is_ok() && Sampling::grid(0).is_err());
-    assert_eq!(Options::DEFAULT.sampling, Sampling::Center);
+    assert_eq!(Sampling::default(), Sampling::Center);
 }

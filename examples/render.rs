@@ -3,7 +3,7 @@
 //! ```text
 //! cargo run --release --example render -- scenes/lab.toml --output lab.png \
 //!     [--stepping …] [--sphere-test …] [--sqrt …] [--secondary convex|epsilon:VALUE] \
-//!     [--force]   # --help lists the choices
+//!     [--sampling center|grid:N|adaptive:N] [--force]   # --help lists the choices
 //! ```
 //!
 //! A scene file without lights, planes or mirrors is drawn through the spheres-only type
@@ -38,7 +38,7 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use embedded_graphics::{pixelcolor::Rgb888, prelude::*, primitives::Rectangle};
-use embedded_raytracer::{scene_file, Method, Options, Render, SecondaryOrigin};
+use embedded_raytracer::{scene_file, Method, Options, Render, Sampling, SecondaryOrigin};
 
 #[path = "common/standard.rs"]
 mod standard;
@@ -48,10 +48,11 @@ use standard::FullSceneFile;
 fn usage() -> String {
     format!(
         "usage: render SCENE.toml [--output OUT.png] [--force] {} [--secondary convex|epsilon:VALUE] \
-(default method {}, secondary {})",
+[--sampling center|grid:N|adaptive:N] (default method {}, secondary {}, sampling {})",
         standard::method_flags(),
         Method::DEFAULT,
-        secondary_name(Options::DEFAULT.secondary)
+        secondary_name(Options::DEFAULT.secondary),
+        Sampling::Center
     )
 }
 
@@ -99,6 +100,10 @@ mirrors (scenes/shadows.toml, scenes/mirrors.toml) are drawn when the file has t
                      where shadow and reflection rays start: convex (default; no
                      epsilon) or the textbook fixed epsilon, VALUE scene units (a
                      positive finite number); only scenes with lights or mirrors use it
+  --sampling center|grid:N|adaptive:N
+                     rays per pixel: the centre ray (default), an N x N grid in every
+                     pixel, or the grid only where an edge can cross the pixel (N = 2,
+                     3 or 4), averaged in linear light
   --help, -h         this text
 
 Flags take their value as the next argument or after `=` (--output=out.png); a value
@@ -124,6 +129,7 @@ struct Args {
     output: PathBuf,
     method: Method,
     secondary: SecondaryOrigin,
+    sampling: Sampling,
     force: bool,
 }
 
@@ -172,6 +178,7 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
     let mut output = None;
     let mut method = Method::default();
     let mut secondary = Options::DEFAULT.secondary;
+    let mut sampling = Sampling::Center;
     let mut force = false;
     let mut seen: Vec<&'static str> = Vec::new();
     let mut flags_ended = false;
@@ -195,6 +202,7 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
             "--sphere-test" => "--sphere-test",
             "--sqrt" => "--sqrt",
             "--secondary" => "--secondary",
+            "--sampling" => "--sampling",
             "--force" => "--force",
             _ => return Err(format!("unknown flag `{}`", arg.to_string_lossy())),
         };
@@ -232,6 +240,7 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
             .ok_or_else(|| format!("{flag}: `{}` is not a valid choice", value.to_string_lossy()))?;
         match flag {
             "--secondary" => secondary = parse_secondary(text)?,
+            "--sampling" => sampling = text.parse().map_err(|e| format!("--sampling: {e}, got `{text}`"))?,
             "--stepping" => method.stepping = text.parse().map_err(|e| format!("--stepping: {e}"))?,
             "--sphere-test" => {
                 method.sphere_test = text.parse().map_err(|e| format!("--sphere-test: {e}"))?
@@ -254,6 +263,7 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
         output,
         method,
         secondary,
+        sampling,
         force,
     }))
 }
@@ -276,13 +286,16 @@ fn run() -> Result<(), String> {
     let (rendering, encoding) = match file.spheres_only() {
         // No light, plane or mirror: the spheres-only type, whose loop is Lab #1's.
         Some(spheres) => {
-            let render = Render::new(&spheres.scene, &spheres.camera).with_method(args.method);
+            let render = Render::new(&spheres.scene, &spheres.camera)
+                .with_method(args.method)
+                .with_sampling(args.sampling);
             output(&render, size, destination, &args.output)?
         }
         None => {
             let render = Render::new(&file.scene, &file.camera)
                 .with_method(args.method)
-                .with_options(Options::DEFAULT.with_secondary(args.secondary));
+                .with_options(Options::DEFAULT.with_secondary(args.secondary))
+                .with_sampling(args.sampling);
             output(&render, size, destination, &args.output)?
         }
     };
@@ -291,8 +304,12 @@ fn run() -> Result<(), String> {
     let memory = peak_memory().map_or(String::new(), |kib| {
         format!(", peak memory {:.1} MB", kib as f64 * 1024.0 / 1e6)
     });
+    let sampling = match args.sampling {
+        Sampling::Center => String::new(),
+        other => format!(", sampling {other}"),
+    };
     let summary = format!(
-        "{}: {}x{} pixels{}, method {}, {:.3} ms ({:.1} ns/pixel), PNG {:.3} ms{memory} -> {}",
+        "{}: {}x{} pixels{}, method {}{sampling}, {:.3} ms ({:.1} ns/pixel), PNG {:.3} ms{memory} -> {}",
         args.scene.display(),
         size.width,
         size.height,

@@ -257,3 +257,45 @@ fn sampling_choices_parse_display_and_refuse() {
     assert!(Sampling::grid(2).is_ok() && Sampling::adaptive(4).is_ok() && Sampling::grid(0).is_err());
     assert_eq!(Sampling::default(), Sampling::Center);
 }
+
+/// The QEMU Cortex-M4F run's anti-aliasing renders (`aa SCENE SAMPLING HASH …` lines
+/// of `tests/data/qemu_cortex_m4.txt`, made by `.ci/firmware --update`): the host
+/// draws the same pixels at 240×240 into the same `PixelHash`.
+#[test]
+fn firmware_anti_aliasing_hashes_equal_the_hosts() {
+    use embedded_raytracer::hash::PixelHash;
+    let size = Size::new(240, 240);
+    let text = std::fs::read_to_string(format!("{}/tests/data/qemu_cortex_m4.txt", env!("CARGO_MANIFEST_DIR")))
+        .unwrap();
+    fn host<const N: usize, const L: usize, const P: usize, const D: usize>(
+        scene: &Scene<N, L, P, D>,
+        camera: &Camera,
+        sampling: Sampling,
+        size: Size,
+    ) -> u64 {
+        let camera = resized(camera, size);
+        let mut hash = PixelHash::new(size);
+        Render::new(scene, &camera).with_sampling(sampling).draw(&mut hash).unwrap();
+        hash.hash()
+    }
+    let mut checked = Vec::new();
+    for line in text.lines().filter(|l| l.starts_with("aa ")) {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        let (scene, sampling) = (words[1], words[2].parse::<Sampling>().unwrap());
+        let firmware = u64::from_str_radix(words[3].trim_start_matches("0x"), 16).unwrap();
+        let ours = if standard::SCENES.contains(&scene) {
+            let file = standard::load(scene);
+            host(&file.scene, &file.camera, sampling, size)
+        } else {
+            let file = standard::load_full(scene);
+            host(&file.scene, &file.camera, sampling, size)
+        };
+        assert_eq!(ours, firmware, "{line}");
+        checked.push((scene.to_string(), sampling));
+    }
+    for scene in ["lab", "shadows"] {
+        for s in [Sampling::Center, Sampling::grid(4).unwrap(), Sampling::adaptive(4).unwrap()] {
+            assert!(checked.contains(&(scene.to_string(), s)), "no QEMU line for {scene} {s}");
+        }
+    }
+}

@@ -271,10 +271,10 @@ struct LitFrame<'a, T: TestStrategy, const N: usize, const L: usize> {
     /// Per light and sphere: where on the image the sphere's shadow on the first plane
     /// can be (see [`shadow_silhouette`]).
     shadow: &'a [[Silhouette; N]; L],
-    /// The current row's cut of those silhouettes, `(lo, len)`: one buffer for the
+    /// Per light, the current row's cut of those silhouettes: one buffer for the
     /// frame, rewritten per row (a per-row array of `N × L` spans would be zeroed and
     /// moved for every row).
-    shadow_rows: &'a [[Cell<(u32, u32)>; N]; L],
+    shadow_rows: &'a [ShadowRow<N>; L],
     planes: &'a [FramePlane],
     lights: &'a [FrameLight],
     camera: &'a Camera,
@@ -306,6 +306,23 @@ struct Surface {
     material: Material,
     /// The ray met a sphere's inner surface (it can meet it again).
     inside: bool,
+}
+
+/// One light's shadow spans on the current row: the spheres whose shadow on the first
+/// plane can fall on the row, `(sphere, lo, len)` (columns `[lo, lo + len)`), packed
+/// at the front.
+struct ShadowRow<const N: usize> {
+    count: Cell<usize>,
+    spans: [Cell<(Object, u32, u32)>; N],
+}
+
+impl<const N: usize> ShadowRow<N> {
+    fn empty() -> Self {
+        Self {
+            count: Cell::new(0),
+            spans: core::array::from_fn(|_| Cell::new((0, 0, 0))),
+        }
+    }
 }
 
 /// Renders one frame of a scene with lights, planes or mirrors.
@@ -422,8 +439,7 @@ fn render_with<
             }
         }
     }
-    let shadow_rows: [[Cell<(u32, u32)>; N]; L] =
-        core::array::from_fn(|_| core::array::from_fn(|_| Cell::new((0, 0))));
+    let shadow_rows: [ShadowRow<N>; L] = core::array::from_fn(|_| ShadowRow::empty());
     let lit = LitFrame {
         spheres: frame.spheres,
         shadow: &shadow,
@@ -493,14 +509,16 @@ impl<
         // The shadow spans of this row (where the first plane is in view at all).
         let floor_in_view = spans.first().is_some_and(|&(_, len)| len > 0);
         for (row, sils) in f.shadow_rows.iter().zip(f.shadow).take(f.lights.len()) {
-            for (span, sil) in row.iter().zip(sils).take(f.spheres.len()) {
-                let cut = if floor_in_view {
-                    sil.row_span(j, f.i0, f.i1)
-                } else {
-                    None
-                };
-                span.set(cut.map_or((0, 0), |(lo, hi)| (lo, hi - lo)));
+            let mut count = 0;
+            if floor_in_view {
+                for (k, sil) in sils.iter().enumerate().take(f.spheres.len()) {
+                    if let (Some((lo, hi)), Some(slot)) = (sil.row_span(j, f.i0, f.i1), row.spans.get(count)) {
+                        slot.set((k, lo, hi - lo));
+                        count += 1;
+                    }
+                }
             }
+            row.count.set(count);
         }
         Self {
             f,
@@ -574,11 +592,12 @@ impl<
         }
     }
 
-    /// Whether the light's segment from `o` is blocked: the light's last occluder
-    /// first, then every object until one blocks (any hit), or — the literal
-    /// baseline — every object, as a closest-hit search would. `column`: the primary
-    /// ray's column when `o` is its hit on the first plane, whose shadow spans say
-    /// which spheres can block.
+    /// Whether the light's segment from `o` is blocked: for a primary ray's hit on the
+    /// first plane (`column` is its column), only the spheres whose shadow span on this
+    /// row holds the column can block it, then the planes; otherwise the light's last
+    /// occluder first, then every object until one blocks (any hit). The literal
+    /// baseline tests every object, as a closest-hit search would. Any hit: the order
+    /// of the tests changes no answer.
     #[allow(clippy::too_many_arguments)]
     fn occluded(
         &mut self,
@@ -590,30 +609,31 @@ impl<
         inside: bool,
         column: Option<u32>,
     ) -> bool {
-        let n = self.f.spheres.len();
-        let count = n + self.f.planes.len();
-        if !self.f.any_hit {
+        let f = self.f;
+        let n = f.spheres.len();
+        let count = n + f.planes.len();
+        if !f.any_hit {
             let mut blocked = false;
             for k in 0..count {
                 blocked |= self.blocks(k, o, l, dist, from, inside);
             }
             return blocked;
         }
-        // A sphere outside its shadow span cannot block a primary hit on the floor.
-        let spans = self.f.shadow_rows.get(light);
-        let candidate = |k: Object| match (column, spans.and_then(|s| s.get(k))) {
-            (Some(i), Some(span)) if from == n && k < n => {
-                let (lo, len) = span.get();
-                i.wrapping_sub(lo) < len
+        if let (Some(i), true, Some(row)) = (column, from == n, f.shadow_rows.get(light)) {
+            for slot in row.spans.iter().take(row.count.get()) {
+                let (k, lo, len) = slot.get();
+                if i.wrapping_sub(lo) < len && self.blocks(k, o, l, dist, from, inside) {
+                    return true;
+                }
             }
-            _ => true,
-        };
+            return (n..count).any(|k| self.blocks(k, o, l, dist, from, inside));
+        }
         let cached = self.occluder.get(light).copied().unwrap_or(NONE);
-        if cached != NONE && candidate(cached) && self.blocks(cached, o, l, dist, from, inside) {
+        if cached != NONE && self.blocks(cached, o, l, dist, from, inside) {
             return true;
         }
         for k in 0..count {
-            if k != cached && candidate(k) && self.blocks(k, o, l, dist, from, inside) {
+            if k != cached && self.blocks(k, o, l, dist, from, inside) {
                 if let Some(c) = self.occluder.get_mut(light) {
                     *c = k;
                 }

@@ -14,9 +14,6 @@
 //! a floor and mirrors (`shadows`, `mirrors`) with the renders of
 //! `scenes::FEATURE_RENDERS`: the default method with the default options, the literal
 //! options and the textbook epsilon, and the seed's method with the literal options.
-//! Last, anti-aliasing on `lab` and `shadows` (`measure::SAMPLINGS`: `Center`,
-//! `Grid(4)`, `Adaptive(4)`, default method), one `aa SCENE SAMPLING HASH …` line each
-//! (`tests/sampling.rs` compares the hashes with the host's).
 //! Prints, one line per scene and render, in a format `tests/firmware_hashes.rs` parses:
 //!
 //! ```text
@@ -75,7 +72,6 @@ mod fw {
         run.sink();
         run.every_scene();
         run.feature_scenes();
-        run.sampling_scenes();
         run.finish()
     }
 }

@@ -37,7 +37,7 @@ use crate::light::Light;
 use crate::material::Material;
 use crate::math::{sqrt_exact, SqrtFn, UNIT_ROUNDOFF};
 use crate::render::Options;
-use crate::sampling::{Fnv, Ident, NoId, Rows};
+use crate::sampling::{Fnv, Ident, Rows};
 use crate::scanline::RowTracer;
 use crate::scene::Scene;
 use crate::shade::{channels, lab1_factor, Shader};
@@ -681,7 +681,127 @@ impl<
     /// The local colour at `p` (not rounded): Lab #1 without lights, otherwise
     /// ambient + diffuse + specular with a shadow ray per light.
     #[inline(always)]
-    fn local<I: Ident>(
+    fn local(&mut self, k: Object, s: &Surface, p: Vec3, dir: Vec3, column: Option<u32>) -> [f32; 3] {
+        if L == 0 || self.f.lights.is_empty() {
+            let kz = lab1_factor(s.lab_nz);
+            return s.rgb.map(|c| c * kz);
+        }
+        let f = self.f;
+        // v, the unit vector back along the ray, only where a highlight needs it.
+        let v = if s.material.specular > 0.0 {
+            dir * (-1.0 / sqrt_exact(dir.dot(dir)))
+        } else {
+            Vec3::ZERO
+        };
+        let (mut diffuse, mut spec) = (0.0f32, 0.0f32);
+        for (index, light) in f.lights.iter().enumerate() {
+            let (l, dist, intensity) = match *light {
+                FrameLight::Directional { l, intensity } => (l, f32::INFINITY, intensity),
+                FrameLight::Point { p: at, intensity } => {
+                    let to = at - p;
+                    let dist = sqrt_exact(to.dot(to));
+                    (to * (1.0 / dist), dist, intensity)
+                }
+            };
+            let nl = s.n.dot(l);
+            // Only a light in front of the surface lights it (and needs a shadow ray).
+            if !(nl > 0.0) {
+                continue;
+            }
+            if f.shadows {
+                let o = O::start(p, l, f.eps);
+                let dist = if O::TESTS_SELF { dist - f.eps } else { dist };
+                if self.occluded(index, o, l, dist, k, s.inside, column) {
+                    continue;
+                }
+            }
+            diffuse += intensity * nl;
+            if s.material.specular > 0.0 {
+                // n·h with h = (l + v)/|l + v|: one root and one division, no vector
+                // scaling (|l + v| ≤ 2: no overflow). No highlight where l + v = 0.
+                let half = l + v;
+                let h2 = half.dot(half);
+                if h2 > 0.0 {
+                    let nh = s.n.dot(half) / sqrt_exact(h2);
+                    if nh > 0.0 {
+                        spec += intensity * s.material.specular * phong_power(nh, s.material.shininess);
+                    }
+                }
+            }
+        }
+        let light = f.ambient + diffuse;
+        let spec = 255.0 * spec;
+        s.rgb.map(|c| {
+            let x = c * light + spec;
+            if x > 255.0 {
+                255.0
+            } else {
+                x
+            }
+        })
+    }
+
+    /// The colour of a primary ray along `d` whose closest hit is `first`: the local
+    /// colour, mixed with what the reflected rays see while the surface is a mirror and
+    /// the depth allows, rounded to 8 bits once.
+    ///
+    /// Out of line: the row loop inlines the tracer twice (samples and colour runs),
+    /// and shading is hundreds of instructions per pixel, so one copy per scene type
+    /// costs one call per pixel and halves the path's flash.
+    #[inline(never)]
+    fn color(&mut self, first: Option<(Object, f32)>, d: Vec3, i: u32) -> Rgb888 {
+        let f = self.f;
+        let mut acc = [0.0f32; 3];
+        let mut weight = 1.0f32;
+        let (mut origin, mut dir, mut hit) = (Vec3::ZERO, d, first);
+        let mut depth = 0u8;
+        loop {
+            let Some((k, t)) = hit else {
+                add(&mut acc, weight, f.bg);
+                break;
+            };
+            let p = origin + dir * t;
+            let s = self.surface(k, p, dir);
+            // The shadow spans hold for the primary ray only.
+            let column = (depth == 0).then_some(i);
+            let local = self.local(k, &s, p, dir, column);
+            let r = if D == 0 { 0.0 } else { s.material.reflect };
+            if !(r > 0.0) {
+                add(&mut acc, weight, local);
+                break;
+            }
+            add(&mut acc, weight * (1.0 - r), local);
+            weight *= r;
+            if depth >= f.max_depth {
+                // At the deepest level the background stands in for the reflection.
+                add(&mut acc, weight, f.bg);
+                break;
+            }
+            // The mirror direction d − 2(d·n)n (the same for n and −n).
+            dir = dir - s.n * (2.0 * dir.dot(s.n));
+            origin = O::start(p, dir, f.eps);
+            hit = self.closest(origin, dir, k, s.inside);
+            depth += 1;
+        }
+        let round = |x: f32| {
+            let v = (x + 0.5) as i32;
+            if v > 255 {
+                255
+            } else {
+                v as u8
+            }
+        };
+        Rgb888::new(round(acc[0]), round(acc[1]), round(acc[2]))
+    }
+
+    /// [`Self::local`] with the ray's identity (which lights reach the point) mixed
+    /// into `id`: the copy adaptive sampling's rays use, so that the one-ray path's
+    /// code stays as it is.
+    ///
+    /// The local colour at `p` (not rounded): Lab #1 without lights, otherwise
+    /// ambient + diffuse + specular with a shadow ray per light.
+    #[inline(always)]
+    fn local_with<I: Ident>(
         &mut self,
         k: Object,
         s: &Surface,
@@ -752,21 +872,10 @@ impl<
         })
     }
 
-    /// The colour of a primary ray along `d` whose closest hit is `first`: the local
-    /// colour, mixed with what the reflected rays see while the surface is a mirror and
-    /// the depth allows, rounded to 8 bits once.
-    ///
-    /// Out of line: the row loop inlines the tracer twice (samples and colour runs),
-    /// and shading is hundreds of instructions per pixel, so one copy per scene type
-    /// costs one call per pixel and halves the path's flash.
-    #[inline(never)]
-    fn color(&mut self, first: Option<(Object, f32)>, d: Vec3, i: u32) -> Rgb888 {
-        self.color_with::<NoId, true>(first, d, i, &mut NoId)
-    }
-
     /// [`Self::color`] with the ray's identity (see [`RowTracer::identified`]) mixed
-    /// into `id`; `CULL`: the primary ray is column `i`'s centre ray, so the row's
-    /// shadow spans hold for it (a sub-pixel ray is not culled).
+    /// into `id`, for adaptive sampling (a copy: the one-ray path's code stays as it
+    /// is); `CULL`: the primary ray is column `i`'s centre ray, so the row's shadow
+    /// spans hold for it (a sub-pixel ray is not culled).
     #[inline(always)]
     fn color_with<I: Ident, const CULL: bool>(
         &mut self,
@@ -798,7 +907,7 @@ impl<
             id.mix(s.rgb.iter().fold(0, |h, c| h.rotate_left(11) ^ c.to_bits()));
             // The shadow spans hold for the primary ray only.
             let column = (CULL && depth == 0).then_some(i);
-            let local = self.local(k, &s, p, dir, column, id);
+            let local = self.local_with(k, &s, p, dir, column, id);
             let r = if D == 0 { 0.0 } else { s.material.reflect };
             if !(r > 0.0) {
                 add(&mut acc, weight, local);

@@ -37,7 +37,7 @@
 //!   marked the same way: where shading changes that fast across a pixel (a sphere's
 //!   rim, a highlight), its mean is not its centre's colour.
 //!   The identities are kept for two rows (a fixed buffer of [`ADAPTIVE_MAX_WIDTH`]
-//!   columns: 16-bit identities, centre colours and edge bits, 3,280 bytes), so each
+//!   columns: 16-bit identities, centre colours and edge bits, 2,624 bytes), so each
 //!   row is emitted one row after it is traced; a clipped render traces the one-pixel
 //!   ring around the clip too, so a pixel never depends on the clip.
 //! - *detail finer than the pixels*: a centre ray that meets a checkered plane where
@@ -197,7 +197,7 @@ impl FromStr for Sampling {
 
 /// The widest image `Adaptive` keeps its two rows of shared samples for; a wider
 /// image's pixels are all edge pixels (`Grid(n)`'s).
-pub const ADAPTIVE_MAX_WIDTH: usize = 320;
+pub const ADAPTIVE_MAX_WIDTH: usize = 256;
 
 /// Silhouettes whose semi-minor axis (lower bound, pixels) is under this may hold no
 /// pixel centre: all their pixels are edge pixels. An ellipse with a semi-minor axis of
@@ -212,23 +212,12 @@ pub const CONTRAST: u8 = 16;
 
 /// A ray's identity accumulated along its path (see [`RowTracer::identified`]).
 pub(crate) trait Ident {
-    /// Whether this identity is kept (false: the one-ray path, nothing computed).
+    /// Whether this identity is kept (an identity that is not computes nothing).
     const KEPT: bool;
     fn mix(&mut self, x: u32);
     /// The ray sees detail finer than the pixel spacing (checker cells): its pixel is
     /// an edge pixel whatever its neighbours see.
     fn fine(&mut self);
-}
-
-/// No identity: the one-ray path, whose code it leaves unchanged.
-pub(crate) struct NoId;
-
-impl Ident for NoId {
-    const KEPT: bool = false;
-    #[inline(always)]
-    fn mix(&mut self, _x: u32) {}
-    #[inline(always)]
-    fn fine(&mut self) {}
 }
 
 /// FNV-1a-style mixing of 32-bit words, from 0 (the identity of a ray that hits

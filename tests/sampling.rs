@@ -259,13 +259,14 @@ fn sampling_choices_parse_display_and_refuse() {
 }
 
 /// The QEMU Cortex-M4F run's anti-aliasing renders (`aa SCENE SAMPLING HASH …` lines
-/// of `tests/data/qemu_cortex_m4.txt`, made by `.ci/firmware --update`): the host
-/// draws the same pixels at 240×240 into the same `PixelHash`.
+/// of `tests/data/qemu_sampling.txt`, made by `cargo run --release --example
+/// qemu_sampling --target thumbv7em-none-eabihf`): the host draws the same pixels at
+/// 240×240 into the same `PixelHash`.
 #[test]
 fn firmware_anti_aliasing_hashes_equal_the_hosts() {
     use embedded_raytracer::hash::PixelHash;
     let size = Size::new(240, 240);
-    let text = std::fs::read_to_string(format!("{}/tests/data/qemu_cortex_m4.txt", env!("CARGO_MANIFEST_DIR")))
+    let text = std::fs::read_to_string(format!("{}/tests/data/qemu_sampling.txt", env!("CARGO_MANIFEST_DIR")))
         .unwrap();
     fn host<const N: usize, const L: usize, const P: usize, const D: usize>(
         scene: &Scene<N, L, P, D>,

@@ -1043,7 +1043,7 @@ mod tests {
             panic!("lab is spheres-only")
         };
         let mut expected = Vec::new();
-        Render::new(&**scene, &app.camera)
+        Render::<'_, MAX_SPHERES, Rgb888>::new(&**scene, &app.camera)
             .with_sampling(Sampling::adaptive(4).unwrap())
             .trace(|s| expected.push(s.color));
         assert_eq!(shown, expected);

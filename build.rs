@@ -65,7 +65,12 @@ fn srgb_tables() {
         .map(|k| format!("{}", (linear(f64::from(k) / 255.0) * 65535.0).round() as u32))
         .collect();
     let thresholds: Vec<String> = (0..255)
-        .map(|k| format!("{}", (linear((f64::from(k) + 0.5) / 255.0) * 16.0 * 65535.0).round() as u32))
+        .map(|k| {
+            format!(
+                "{}",
+                (linear((f64::from(k) + 0.5) / 255.0) * 16.0 * 65535.0).round() as u32
+            )
+        })
         .collect();
     let text = format!(
         "/// 8-bit sRGB level to linear light, `round(65535·L)`.\n\

@@ -31,8 +31,14 @@ const ROUNDS: usize = 15;
 fn choices() -> [(&'static str, Sampling); 3] {
     [
         ("center", Sampling::Center),
-        ("grid:4", Sampling::Grid(embedded_raytracer::SubSamples::new(4).unwrap())),
-        ("adaptive:4", Sampling::Adaptive(embedded_raytracer::SubSamples::new(4).unwrap())),
+        (
+            "grid:4",
+            Sampling::Grid(embedded_raytracer::SubSamples::new(4).unwrap()),
+        ),
+        (
+            "adaptive:4",
+            Sampling::Adaptive(embedded_raytracer::SubSamples::new(4).unwrap()),
+        ),
     ]
 }
 

@@ -66,12 +66,10 @@ fn traced<const N: usize, const L: usize, const P: usize, const D: usize>(
     sampling: Sampling,
 ) -> (Vec<Rgb888>, Vec<u32>) {
     let (mut colors, mut rays) = (Vec::new(), Vec::new());
-    Render::new(scene, camera)
-        .with_sampling(sampling)
-        .trace(|s| {
-            colors.push(s.color);
-            rays.push(s.rays);
-        });
+    Render::new(scene, camera).with_sampling(sampling).trace(|s| {
+        colors.push(s.color);
+        rays.push(s.rays);
+    });
     (colors, rays)
 }
 
@@ -132,14 +130,22 @@ fn table<const N: usize, const L: usize, const P: usize, const D: usize>(
         .iter()
         .zip(&adaptive4)
         .map(|(g, a)| {
-            [g.r().abs_diff(a.r()), g.g().abs_diff(a.g()), g.b().abs_diff(a.b())]
-                .into_iter()
-                .max()
-                .unwrap_or(0)
+            [
+                g.r().abs_diff(a.r()),
+                g.g().abs_diff(a.g()),
+                g.b().abs_diff(a.b()),
+            ]
+            .into_iter()
+            .max()
+            .unwrap_or(0)
         })
         .collect();
     let over = diffs.iter().filter(|&&d| d > 2).count();
-    let (at, worst) = diffs.iter().enumerate().max_by_key(|(k, d)| (**d, usize::MAX - k)).map_or((0, 0), |(k, d)| (k, *d));
+    let (at, worst) = diffs
+        .iter()
+        .enumerate()
+        .max_by_key(|(k, d)| (**d, usize::MAX - k))
+        .map_or((0, 0), |(k, d)| (k, *d));
     let _ = writeln!(
         notes,
         "- {name}: edge pixels {edges} of {} ({:.2} %); Adaptive(4) vs Grid(4): {over} pixels ({:.3} %) more than 2 levels apart, the largest {worst} levels at ({}, {}){}",

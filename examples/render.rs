@@ -240,7 +240,11 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
             .ok_or_else(|| format!("{flag}: `{}` is not a valid choice", value.to_string_lossy()))?;
         match flag {
             "--secondary" => secondary = parse_secondary(text)?,
-            "--sampling" => sampling = text.parse().map_err(|e| format!("--sampling: {e}, got `{text}`"))?,
+            "--sampling" => {
+                sampling = text
+                    .parse()
+                    .map_err(|e| format!("--sampling: {e}, got `{text}`"))?
+            }
             "--stepping" => method.stepping = text.parse().map_err(|e| format!("--stepping: {e}"))?,
             "--sphere-test" => {
                 method.sphere_test = text.parse().map_err(|e| format!("--sphere-test: {e}"))?

@@ -689,7 +689,11 @@ impl App {
                 -o.zoom_steps
             )
         };
-        [format!("{ms:.2} ms {model} {}", self.view.sampling), method, third]
+        [
+            format!("{ms:.2} ms {model} {}", self.view.sampling),
+            method,
+            third,
+        ]
     }
 
     /// The load error over the (last good) image, wrapped to the display width.
@@ -1020,7 +1024,11 @@ mod tests {
     /// with it.
     #[test]
     fn a_cycles_the_sampling_and_the_status_bar_shows_it() {
-        let mut app = App::new(&args("scenes/lab.toml", &["--size", "48x36", "--display", "rgb888"])).unwrap();
+        let mut app = App::new(&args(
+            "scenes/lab.toml",
+            &["--size", "48x36", "--display", "rgb888"],
+        ))
+        .unwrap();
         let mut seen = Vec::new();
         for _ in 0..Sampling::ALL.len() {
             seen.push(app.view.sampling);
@@ -1047,7 +1055,15 @@ mod tests {
             .with_sampling(Sampling::adaptive(4).unwrap())
             .trace(|s| expected.push(s.color));
         assert_eq!(shown, expected);
-        let center = shade(&app.scene, &app.camera, &View { sampling: Sampling::Center, ..app.view }, app.view.method);
+        let center = shade(
+            &app.scene,
+            &app.camera,
+            &View {
+                sampling: Sampling::Center,
+                ..app.view
+            },
+            app.view.method,
+        );
         assert_ne!(shown, center.pixels, "adaptive sampling changed no pixel");
     }
 

@@ -82,9 +82,15 @@ pub(crate) fn render<
     // once, never moved (a by-value `Frame` holding the `Vec` would be copied on
     // return, doubling the render's stack).
     let mut spheres = Vec::new();
-    let Some(frame) =
-        Frame::<T, Lab1>::new::<N, L, P, D, S>(scene, camera, options, rows.clip(clip), offset, &mut spheres, 0.0)
-    else {
+    let Some(frame) = Frame::<T, Lab1>::new::<N, L, P, D, S>(
+        scene,
+        camera,
+        options,
+        rows.clip(clip),
+        offset,
+        &mut spheres,
+        0.0,
+    ) else {
         return Ok(()); // nothing visible
     };
     let (w, background) = (camera.w(), frame.background);

@@ -512,7 +512,8 @@ impl<
             let mut count = 0;
             if floor_in_view {
                 for (k, sil) in sils.iter().enumerate().take(f.spheres.len()) {
-                    if let (Some((lo, hi)), Some(slot)) = (sil.row_span(j, f.i0, f.i1), row.spans.get(count)) {
+                    if let (Some((lo, hi)), Some(slot)) = (sil.row_span(j, f.i0, f.i1), row.spans.get(count))
+                    {
                         slot.set((k, lo, hi - lo));
                         count += 1;
                     }
@@ -977,7 +978,11 @@ impl<
     }
 
     #[inline(always)]
-    fn sub_sample(&mut self, sphere_hit: Option<(usize, f32, &'s FrameSphere<T, LitSphere>)>, d: Vec3) -> (u32, Rgb888) {
+    fn sub_sample(
+        &mut self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, LitSphere>)>,
+        d: Vec3,
+    ) -> (u32, Rgb888) {
         let best = self.primary::<false>(sphere_hit, 0, d);
         self.color_identified::<false>(best, d, 0)
     }
@@ -1032,7 +1037,11 @@ impl<
         if plane.checker.is_none() {
             return;
         }
-        let step = f.camera.pixel_step().length().max(f.camera.scanline_step().length());
+        let step = f
+            .camera
+            .pixel_step()
+            .length()
+            .max(f.camera.scanline_step().length());
         let dn = dir.dot(plane.n).abs();
         let footprint = t * step * (1.0 + dir.length() / dn);
         // NaN (a ray along the plane) fails the comparison: fine as well.
@@ -1043,7 +1052,12 @@ impl<
 
     /// [`Self::color_with`] with the identity: out of line, like [`Self::color`].
     #[inline(never)]
-    fn color_identified<const CULL: bool>(&mut self, first: Option<(Object, f32)>, d: Vec3, i: u32) -> (u32, Rgb888) {
+    fn color_identified<const CULL: bool>(
+        &mut self,
+        first: Option<(Object, f32)>,
+        d: Vec3,
+        i: u32,
+    ) -> (u32, Rgb888) {
         let mut id = Fnv(0, false);
         let c = self.color_with::<Fnv, CULL>(first, d, i, &mut id);
         (id.get(), c)

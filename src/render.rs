@@ -400,7 +400,9 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
     }
 }
 
-impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink> Frame<'_, '_, N, L, P, D, K> {
+impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
+    Frame<'_, '_, N, L, P, D, K>
+{
     #[inline(always)]
     fn with_rows<S: Stepper, T: TestStrategy, Q: SqrtFn, G: Rows>(self, rows: G) -> Result<(), K::Error> {
         // The scene's type decides the loop at compile time: Lab #1 on spheres, or the

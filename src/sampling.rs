@@ -386,7 +386,10 @@ impl Rows for AdaptiveRows {
         // One pixel more on every side: the neighbours' shared samples.
         Rectangle::new(
             clip.top_left - Point::new(1, 1),
-            Size::new(clip.size.width.saturating_add(2), clip.size.height.saturating_add(2)),
+            Size::new(
+                clip.size.width.saturating_add(2),
+                clip.size.height.saturating_add(2),
+            ),
         )
     }
 
@@ -505,7 +508,9 @@ fn row_area<T: TestStrategy, Sh: Shader>(frame: &Frame<'_, T, Sh>, i0: u32, i1: 
 
 /// Bounding boxes (widened by one pixel) of the silhouettes that may hold no pixel
 /// centre (semi-minor axis under [`SMALL`]).
-fn small_silhouettes<const N: usize, T: TestStrategy, Sh: Shader>(frame: &Frame<'_, T, Sh>) -> Vec<[f32; 4], N> {
+fn small_silhouettes<const N: usize, T: TestStrategy, Sh: Shader>(
+    frame: &Frame<'_, T, Sh>,
+) -> Vec<[f32; 4], N> {
     let mut small = Vec::new();
     for fs in frame.spheres {
         // The culling ellipse contains every pixel a centre ray can hit the sphere in;
@@ -615,7 +620,11 @@ fn average<'s, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>>(
         }
     }
     let count = (st.n * st.n) as u32;
-    Rgb888::new(encode(sum[0], count), encode(sum[1], count), encode(sum[2], count))
+    Rgb888::new(
+        encode(sum[0], count),
+        encode(sum[1], count),
+        encode(sum[2], count),
+    )
 }
 
 /// An 8-bit sRGB level in linear light, `round(65535·L)`.
@@ -659,7 +668,10 @@ impl<'s, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>> Sample
             }
         }
         let rays = (self.steps.n * self.steps.n) as u32;
-        (average::<T, Q, Sh, X>(self.spheres, self.tracer, self.steps, i, self.j), rays)
+        (
+            average::<T, Q, Sh, X>(self.spheres, self.tracer, self.steps, i, self.j),
+            rays,
+        )
     }
 
     /// The next pixel: column, colour, rays.
@@ -769,8 +781,19 @@ mod tests {
             let n = [4usize, 9, 16][t % 3];
             // Two-tone samples (an edge) and spread ones, over the whole range.
             let (a, b) = (next() * 255.0, next() * 255.0);
-            let unrounded: std::vec::Vec<f64> =
-                (0..n).map(|_| if t % 2 == 0 { if next() < 0.5 { a } else { b } } else { next() * 255.0 }).collect();
+            let unrounded: std::vec::Vec<f64> = (0..n)
+                .map(|_| {
+                    if t % 2 == 0 {
+                        if next() < 0.5 {
+                            a
+                        } else {
+                            b
+                        }
+                    } else {
+                        next() * 255.0
+                    }
+                })
+                .collect();
             let exact_lin = unrounded.iter().map(|&x| srgb_to_linear(x / 255.0)).sum::<f64>() / n as f64;
             let exact = linear_to_srgb(exact_lin) * 255.0;
             let sum: u32 = unrounded.iter().map(|&x| decode(x.round() as u8)).sum();

@@ -53,7 +53,11 @@ pub(crate) trait RowTracer<'s, T: TestStrategy, Sh: Shader> {
     ) -> (u32, Rgb888);
     /// A sub-pixel ray `d` (anywhere in the row's footprint, so no per-row span may
     /// cull it) given its closest sphere hit over every sphere: identity and colour.
-    fn sub_sample(&mut self, sphere_hit: Option<(usize, f32, &'s FrameSphere<T, Sh>)>, d: Vec3) -> (u32, Rgb888);
+    fn sub_sample(
+        &mut self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, Sh>)>,
+        d: Vec3,
+    ) -> (u32, Rgb888);
 }
 
 /// Lab #1 on spheres: the tracer of a scene without lights, planes or mirrors.
@@ -93,7 +97,11 @@ impl<'s, T: TestStrategy> RowTracer<'s, T, Lab1> for Lab1Row {
     }
 
     #[inline(always)]
-    fn sub_sample(&mut self, sphere_hit: Option<(usize, f32, &'s FrameSphere<T, Lab1>)>, d: Vec3) -> (u32, Rgb888) {
+    fn sub_sample(
+        &mut self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, Lab1>)>,
+        d: Vec3,
+    ) -> (u32, Rgb888) {
         <Self as RowTracer<'s, T, Lab1>>::identified(self, sphere_hit, 0, d)
     }
 }

@@ -103,7 +103,12 @@ impl Silhouette {
                 let semi_major = crate::math::sqrt_exact(half_width * half_width + half_height * half_height);
                 let semi_minor = h0 / crate::math::sqrt_exact(q) / semi_major;
                 Some((
-                    [xc0 - half_width, xc0 + half_width, y0 - half_height, y0 + half_height],
+                    [
+                        xc0 - half_width,
+                        xc0 + half_width,
+                        y0 - half_height,
+                        y0 + half_height,
+                    ],
                     semi_minor,
                 ))
             }

@@ -1108,13 +1108,19 @@ fn sampling_flag() {
     std::fs::write(&out, b"sentinel").unwrap();
     let out_s = out.to_str().unwrap();
     for (value, expect) in [
-        ("grid:5", "--sampling: sub-samples per axis must be 2, 3 or 4, not 5, got `grid:5`"),
+        (
+            "grid:5",
+            "--sampling: sub-samples per axis must be 2, 3 or 4, not 5, got `grid:5`",
+        ),
         ("adaptive:1", "not 1, got `adaptive:1`"),
         ("grid", "--sampling: expected center, grid:N or adaptive:N"),
         ("box:2", "--sampling: expected center, grid:N or adaptive:N"),
         ("adaptive:x", "got `adaptive:x`"),
     ] {
-        assert_refused(&run_in(&dir, &[lit, "--output", out_s, &format!("--sampling={value}")]), expect);
+        assert_refused(
+            &run_in(&dir, &[lit, "--output", out_s, &format!("--sampling={value}")]),
+            expect,
+        );
         assert_eq!(std::fs::read(&out).unwrap(), b"sentinel", "{value}");
     }
     assert_refused(&run_in(&dir, &[lit, "--sampling"]), "--sampling needs a value");
@@ -1123,6 +1129,12 @@ fn sampling_flag() {
         "--sampling is given twice",
     );
     let help = String::from_utf8_lossy(&run_in(&dir, &["--help"]).stdout).into_owned();
-    assert!(help.lines().next().unwrap().contains("[--sampling center|grid:N|adaptive:N]"), "{help}");
+    assert!(
+        help.lines()
+            .next()
+            .unwrap()
+            .contains("[--sampling center|grid:N|adaptive:N]"),
+        "{help}"
+    );
     assert!(help.contains("sampling center)"), "{help}");
 }

@@ -65,7 +65,9 @@ fn same_everywhere<const N: usize, const L: usize, const P: usize, const D: usiz
     what: &str,
 ) -> Vec<Rgb888> {
     let size = camera.size();
-    let render = Render::new(scene, camera).with_method(method).with_sampling(sampling);
+    let render = Render::new(scene, camera)
+        .with_method(method)
+        .with_sampling(sampling);
     let whole = colors(render);
     let (w, h) = (size.width as i32, size.height as i32);
     // Drawn into a target: the same as traced.
@@ -76,16 +78,30 @@ fn same_everywhere<const N: usize, const L: usize, const P: usize, const D: usiz
     }
     // Clipped and offset: a clip cutting into the image on every side.
     let offset = Point::new(3, -2);
-    let clip = Rectangle::new(Point::new(5, 1), Size::new(size.width / 2 + 1, size.height / 2 + 3));
+    let clip = Rectangle::new(
+        Point::new(5, 1),
+        Size::new(size.width / 2 + 1, size.height / 2 + 3),
+    );
     let mut frame = Frame::new(Size::new(size.width + 6, size.height + 4));
-    render.with_offset(offset).draw(&mut frame.clipped(&clip)).unwrap();
+    render
+        .with_offset(offset)
+        .draw(&mut frame.clipped(&clip))
+        .unwrap();
     let visible = Rectangle::new(offset, size).intersection(&clip);
     assert!(visible.size.width > 0 && visible.size.height > 0);
     for p in visible.points() {
         let q = p - offset;
-        assert_eq!(frame.get(p), Some(whole[(q.y * w + q.x) as usize]), "{what}: clipped {q:?}");
+        assert_eq!(
+            frame.get(p),
+            Some(whole[(q.y * w + q.x) as usize]),
+            "{what}: clipped {q:?}"
+        );
     }
-    assert_eq!(frame.writes, (visible.size.width * visible.size.height) as usize, "{what}: writes");
+    assert_eq!(
+        frame.writes,
+        (visible.size.width * visible.size.height) as usize,
+        "{what}: writes"
+    );
     // Bands of 5 rows, in Rgb565.
     let render565 = Render::<N, Rgb565, L, P, D>::new(scene, camera)
         .with_method(method)
@@ -95,7 +111,11 @@ fn same_everywhere<const N: usize, const L: usize, const P: usize, const D: usiz
         let mut band = vec![Rgb565::new(1, 2, 3); (w * (j1 - j0)) as usize];
         render565.draw_band(j0 as u32..j1 as u32, &mut band).unwrap();
         for (k, c) in band.iter().enumerate() {
-            assert_eq!(*c, Rgb565::from(whole[(j0 * w) as usize + k]), "{what}: band {j0}, pixel {k}");
+            assert_eq!(
+                *c,
+                Rgb565::from(whole[(j0 * w) as usize + k]),
+                "{what}: band {j0}, pixel {k}"
+            );
         }
     }
     // Through the dither: the dither of the averaged colours.
@@ -103,11 +123,14 @@ fn same_everywhere<const N: usize, const L: usize, const P: usize, const D: usiz
         size,
         px: vec![None; (w * h) as usize],
     };
-    render.draw(&mut binary.dithered())
-        .unwrap();
+    render.draw(&mut binary.dithered()).unwrap();
     for (k, c) in binary.px.iter().enumerate() {
         let p = Point::new(k as i32 % w, k as i32 / w);
-        assert_eq!(*c, Some(dither::<BinaryColor>(whole[k], p, Bayer::Eight)), "{what}: dithered {p:?}");
+        assert_eq!(
+            *c,
+            Some(dither::<BinaryColor>(whole[k], p, Bayer::Eight)),
+            "{what}: dithered {p:?}"
+        );
     }
     whole
 }
@@ -116,9 +139,15 @@ fn same_everywhere<const N: usize, const L: usize, const P: usize, const D: usiz
 /// one pixel of the image is each (where the scene has an edge and a flat area).
 fn adaptive_is_grid_or_center(center: &[Rgb888], grid: &[Rgb888], adaptive: &[Rgb888], what: &str) {
     for (k, ((c, g), a)) in center.iter().zip(grid).zip(adaptive).enumerate() {
-        assert!(a == g || a == c, "{what}: pixel {k} is {a:?}, neither grid {g:?} nor centre {c:?}");
+        assert!(
+            a == g || a == c,
+            "{what}: pixel {k} is {a:?}, neither grid {g:?} nor centre {c:?}"
+        );
     }
-    assert!(center.iter().zip(grid).any(|(c, g)| c != g), "{what}: the grid changed nothing");
+    assert!(
+        center.iter().zip(grid).any(|(c, g)| c != g),
+        "{what}: the grid changed nothing"
+    );
 }
 
 fn check_scene<const N: usize, const L: usize, const P: usize, const D: usize>(
@@ -132,7 +161,11 @@ fn check_scene<const N: usize, const L: usize, const P: usize, const D: usize>(
         let base = Render::new(scene, camera).with_method(method);
         let center = colors(base);
         // Center is the default render, bit for bit.
-        assert_eq!(colors(base.with_sampling(Sampling::Center)), center, "{name} {method}");
+        assert_eq!(
+            colors(base.with_sampling(Sampling::Center)),
+            center,
+            "{name} {method}"
+        );
         let mut grids = Vec::new();
         for &s in samplings {
             let what = format!("{name} {method} {s}");
@@ -155,7 +188,10 @@ fn check_scene<const N: usize, const L: usize, const P: usize, const D: usize>(
 
 #[test]
 fn every_sampling_draws_the_same_pixels_whole_clipped_in_bands_and_dithered() {
-    let samplings = Sampling::ALL.into_iter().filter(|s| *s != Sampling::Center).collect::<Vec<_>>();
+    let samplings = Sampling::ALL
+        .into_iter()
+        .filter(|s| *s != Sampling::Center)
+        .collect::<Vec<_>>();
     let size = Size::new(40, 30);
     for name in standard::SCENES {
         let file = standard::load(name);
@@ -174,9 +210,21 @@ fn every_method_samples_alike_on_both_paths() {
     let samplings = [Sampling::grid(4).unwrap(), Sampling::adaptive(4).unwrap()];
     let size = Size::new(24, 18);
     let lab = standard::load("lab");
-    check_scene(&lab.scene, &resized(&lab.camera, size), &Method::ALL, &samplings, "lab");
+    check_scene(
+        &lab.scene,
+        &resized(&lab.camera, size),
+        &Method::ALL,
+        &samplings,
+        "lab",
+    );
     let shadows = standard::load_full("shadows");
-    check_scene(&shadows.scene, &resized(&shadows.camera, size), &Method::ALL, &samplings, "shadows");
+    check_scene(
+        &shadows.scene,
+        &resized(&shadows.camera, size),
+        &Method::ALL,
+        &samplings,
+        "shadows",
+    );
 }
 
 /// Spheres smaller than a pixel, anywhere: wherever the grid sees one, the adaptive
@@ -184,8 +232,14 @@ fn every_method_samples_alike_on_both_paths() {
 #[test]
 fn a_sphere_smaller_than_a_pixel_is_never_missed() {
     let mut rng = Rng(0x5EED_0AA);
-    let camera = Camera::new(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), 0.8, Size::new(48, 40))
-        .unwrap();
+    let camera = Camera::new(
+        Vec3::new(0.0, 0.0, 10.0),
+        Vec3::ZERO,
+        Vec3::new(0.0, 1.0, 0.0),
+        0.8,
+        Size::new(48, 40),
+    )
+    .unwrap();
     let mut seen = 0;
     for _ in 0..20 {
         let mut scene = Scene::<16>::new(Rgb888::BLACK);
@@ -229,10 +283,21 @@ fn adaptive_is_within_two_levels_of_the_grid_on_the_standard_scenes() {
                 .max()
                 .unwrap()
         };
-        let far = grid.iter().zip(&adaptive).filter(|(g, a)| diff(**g, **a) > 2).count();
+        let far = grid
+            .iter()
+            .zip(&adaptive)
+            .filter(|(g, a)| diff(**g, **a) > 2)
+            .count();
         let share = far as f64 / grid.len() as f64;
-        println!("{name}: {far} of {} pixels more than 2 levels off ({:.4} %)", grid.len(), 100.0 * share);
-        assert!(share <= 0.001, "{name}: {far} pixels more than 2 levels from Grid(4)");
+        println!(
+            "{name}: {far} of {} pixels more than 2 levels off ({:.4} %)",
+            grid.len(),
+            100.0 * share
+        );
+        assert!(
+            share <= 0.001,
+            "{name}: {far} pixels more than 2 levels from Grid(4)"
+        );
     }
     for name in standard::SCENES {
         let file = standard::load(name);
@@ -250,8 +315,20 @@ fn sampling_choices_parse_display_and_refuse() {
         assert_eq!(s.to_string().parse::<Sampling>(), Ok(s));
     }
     assert_eq!("grid:1".parse::<Sampling>(), Err(SamplingError::SubSamples(1)));
-    assert_eq!("adaptive:5".parse::<Sampling>(), Err(SamplingError::SubSamples(5)));
-    for bad in ["", "grid", "grid:", "grid:x", "adaptive:-2", "centre", "grid:2:3", "box:2"] {
+    assert_eq!(
+        "adaptive:5".parse::<Sampling>(),
+        Err(SamplingError::SubSamples(5))
+    );
+    for bad in [
+        "",
+        "grid",
+        "grid:",
+        "grid:x",
+        "adaptive:-2",
+        "centre",
+        "grid:2:3",
+        "box:2",
+    ] {
         assert_eq!(bad.parse::<Sampling>(), Err(SamplingError::Syntax), "{bad:?}");
     }
     assert!(Sampling::grid(2).is_ok() && Sampling::adaptive(4).is_ok() && Sampling::grid(0).is_err());
@@ -266,8 +343,11 @@ fn sampling_choices_parse_display_and_refuse() {
 fn firmware_anti_aliasing_hashes_equal_the_hosts() {
     use embedded_raytracer::hash::PixelHash;
     let size = Size::new(240, 240);
-    let text = std::fs::read_to_string(format!("{}/tests/data/qemu_sampling.txt", env!("CARGO_MANIFEST_DIR")))
-        .unwrap();
+    let text = std::fs::read_to_string(format!(
+        "{}/tests/data/qemu_sampling.txt",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
     fn host<const N: usize, const L: usize, const P: usize, const D: usize>(
         scene: &Scene<N, L, P, D>,
         camera: &Camera,
@@ -276,7 +356,10 @@ fn firmware_anti_aliasing_hashes_equal_the_hosts() {
     ) -> u64 {
         let camera = resized(camera, size);
         let mut hash = PixelHash::new(size);
-        Render::new(scene, &camera).with_sampling(sampling).draw(&mut hash).unwrap();
+        Render::new(scene, &camera)
+            .with_sampling(sampling)
+            .draw(&mut hash)
+            .unwrap();
         hash.hash()
     }
     let mut checked = Vec::new();
@@ -295,8 +378,15 @@ fn firmware_anti_aliasing_hashes_equal_the_hosts() {
         checked.push((scene.to_string(), sampling));
     }
     for scene in ["lab", "shadows"] {
-        for s in [Sampling::Center, Sampling::grid(4).unwrap(), Sampling::adaptive(4).unwrap()] {
-            assert!(checked.contains(&(scene.to_string(), s)), "no QEMU line for {scene} {s}");
+        for s in [
+            Sampling::Center,
+            Sampling::grid(4).unwrap(),
+            Sampling::adaptive(4).unwrap(),
+        ] {
+            assert!(
+                checked.contains(&(scene.to_string(), s)),
+                "no QEMU line for {scene} {s}"
+            );
         }
     }
 }

@@ -460,7 +460,9 @@ impl<P: Platform> Run<P> {
             let instr = self.timed(|| render_sampled(scene, &camera, sampling, &mut hash));
             self.platform.quiet(true);
             let mut again = PixelHash::new(SIZE);
-            let stack = stack_of(&self.platform, || render_sampled(scene, &camera, sampling, &mut again));
+            let stack = stack_of(&self.platform, || {
+                render_sampled(scene, &camera, sampling, &mut again)
+            });
             self.platform.quiet(false);
             let pixels = hash.pixels();
             let ipp10 = ipp10(instr, pixels);

@@ -18,7 +18,6 @@ use embedded_graphics::prelude::*;
 use embedded_raytracer::{Camera, Render, Sampling, Scene};
 
 #[path = "../examples/common/standard.rs"]
-#[allow(dead_code)]
 mod standard;
 
 #[path = "../examples/common/slice_target.rs"]

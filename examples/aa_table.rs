@@ -51,7 +51,7 @@ fn main() {
 fn capped(camera: &Camera) -> Camera {
     let size = camera.size();
     if size.width <= MAX_WIDTH {
-        return camera.clone();
+        return *camera;
     }
     let mut p = *camera.params();
     let height = (u64::from(size.height) * u64::from(MAX_WIDTH) / u64::from(size.width)) as u32;
@@ -66,7 +66,7 @@ fn traced<const N: usize, const L: usize, const P: usize, const D: usize>(
     sampling: Sampling,
 ) -> (Vec<Rgb888>, Vec<u32>) {
     let (mut colors, mut rays) = (Vec::new(), Vec::new());
-    Render::new(scene, camera).with_sampling(sampling).trace(|s| {
+    Render::<N, Rgb888, L, P, D>::new(scene, camera).with_sampling(sampling).trace(|s| {
         colors.push(s.color);
         rays.push(s.rays);
     });

@@ -66,10 +66,12 @@ fn traced<const N: usize, const L: usize, const P: usize, const D: usize>(
     sampling: Sampling,
 ) -> (Vec<Rgb888>, Vec<u32>) {
     let (mut colors, mut rays) = (Vec::new(), Vec::new());
-    Render::<N, Rgb888, L, P, D>::new(scene, camera).with_sampling(sampling).trace(|s| {
-        colors.push(s.color);
-        rays.push(s.rays);
-    });
+    Render::<N, Rgb888, L, P, D>::new(scene, camera)
+        .with_sampling(sampling)
+        .trace(|s| {
+            colors.push(s.color);
+            rays.push(s.rays);
+        });
     (colors, rays)
 }
 

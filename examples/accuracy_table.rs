@@ -16,7 +16,7 @@ use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_raytracer::reference::sweeps::{LitPoint, SECONDARY};
 use embedded_raytracer::reference::{self, sweeps};
-use embedded_raytracer::{scene_file, Method, Options, Render, SecondaryOrigin, Stepping};
+use embedded_raytracer::{scene_file, Arithmetic, Method, Options, Render, SecondaryOrigin, Stepping};
 
 #[path = "common/standard.rs"]
 mod standard;
@@ -29,6 +29,7 @@ fn main() -> ExitCode {
         return ExitCode::from(2);
     }
     failure_points(&mut out);
+    integer_table(&mut out);
     if let Err(e) = secondary_failure_points(&mut out) {
         eprintln!("error: {e}");
         return ExitCode::from(2);
@@ -214,6 +215,35 @@ fn secondary_failure_points(out: &mut String) -> Result<(), scene_file::SceneFil
     Ok(())
 }
 
+/// Where the integer kernel's per-frame rule gives way to f32
+/// (`reference::sweeps::integer_sweep`, asserted by `tests/integer.rs`).
+fn integer_table(out: &mut String) {
+    out.push_str("\n### Where the integer kernel gives way to f32\n\n");
+    out.push_str(
+        "`integer/direct/auto/exact` (the default on chips without an FPU) over the sweeps of \
+         `tests/integer.rs`: the last value its per-frame rule takes and the first it gives \
+         to the f32 method; where taken, coverage errors and the largest shade difference \
+         against the f64 reference. Resolution never limits it (taken up to 8192×8192).\n\n",
+    );
+    out.push_str(
+        "| sweep | last taken | first refused | coverage errors where taken | shade max where taken |\n",
+    );
+    out.push_str("|---|---:|---:|---:|---:|\n");
+    for kind in sweeps::IntegerSweep::ALL {
+        let points = sweeps::integer_sweep(kind);
+        let (last, refused) = sweeps::integer_limit(&points);
+        let taken = points.iter().filter(|p| p.integer);
+        let coverage: usize = taken.clone().map(|p| p.metrics.coverage_errors).sum();
+        let shade = taken.map(|p| p.metrics.shade_max).max().unwrap_or(0);
+        out.push_str(&format!(
+            "| {} | {} | {} | {coverage} | {shade} |\n",
+            kind.name(),
+            fmt_opt(last),
+            fmt_opt(refused)
+        ));
+    }
+}
+
 fn fmt_opt(v: Option<f64>) -> String {
     v.map_or_else(|| "—".to_string(), |v| format!("{v:.0}"))
 }
@@ -224,20 +254,29 @@ fn scenes_table(out: &mut String) -> Result<(), scene_file::SceneFileError> {
         "Coverage errors: pixels whose object (or hit/miss) differs from the f64 reference, \
          undecidable pixels excluded. Shade: absolute channel difference in 8-bit levels \
          where both show the same sphere. Drift: largest pixel-centre error of the ray \
-         direction, in pixels.\n\n",
+         direction, in pixels (for the integer kernel, of the f32 direction its trace \
+         reports; its own rays differ from the ideal ones by ≤ 1/128 pixel). \
+         `integer/…`: the integer kernel, marked `(rule: f32)` where its per-frame rule \
+         gives the frame to the f32 method named after it.\n\n",
     );
     out.push_str("| scene | method | coverage errors | fraction | shade max | shade mean | drift (px) | undecidable |\n");
     out.push_str("|---|---|---:|---:|---:|---:|---:|---:|\n");
     for name in SCENES {
         let f = scene_file::load::<MAX_SPHERES, 0, 0, 0>(standard::path(name))?;
         let truth = reference::render(&f.scene, &f.camera);
-        for method in Method::ALL {
+        // The f32 methods, then the integer kernel (the default on chips without an
+        // FPU), marked where its rule gives the frame to the f32 method.
+        for method in Method::ALL.into_iter().chain([Method::INTEGER]) {
             let render = Render::<MAX_SPHERES, Rgb888>::new(&f.scene, &f.camera).with_method(method);
             let m = reference::compare(&render, &truth);
             out.push_str(&format!(
                 "| {name} | {method}{} | {} | {:.2e} | {} | {:.4} | {:.4} | {} |\n",
                 if method == Method::DEFAULT {
                     " (default)"
+                } else if method.arithmetic == Arithmetic::Integer && render.arithmetic() == Arithmetic::F32 {
+                    " (rule: f32)"
+                } else if method == Method::INTEGER {
+                    " (no-FPU default)"
                 } else {
                     ""
                 },

@@ -98,7 +98,10 @@ mod fw {
         method: Method,
         target: &mut PixelHash,
     ) {
-        let Ok(()) = Render::new(scene, camera).with_method(method).draw(target);
+        // The f32 method's fields only, as `qemu_cortex_m4` draws `Method::ALL`: the
+        // arithmetic is then a constant and the integer kernel is not linked here.
+        let f32_method = Method::new(method.stepping, method.sphere_test, method.sqrt);
+        let Ok(()) = Render::new(scene, camera).with_method(f32_method).draw(target);
     }
 
     /// The default method on a scene with features: the method a constant, so that the
@@ -140,7 +143,7 @@ mod fw {
         band: &mut [Rgb888],
     ) -> bool {
         Render::new(scene, camera)
-            .with_method(method)
+            .with_method(Method::new(method.stepping, method.sphere_test, method.sqrt))
             .draw_band(rows, band)
             .is_ok()
     }

@@ -2,15 +2,18 @@
 //!
 //! ```text
 //! cargo run --release --example render -- scenes/lab.toml --output lab.png \
-//!     [--stepping …] [--sphere-test …] [--sqrt …] [--secondary convex|epsilon:VALUE] \
-//!     [--sampling center|grid:N|adaptive:N] [--force]   # --help lists the choices
+//!     [--stepping …] [--sphere-test …] [--sqrt …] [--arithmetic f32|integer] \
+//!     [--secondary convex|epsilon:VALUE] [--sampling center|grid:N|adaptive:N] \
+//!     [--force]   # --help lists the choices
 //! ```
 //!
 //! A scene file without lights, planes or mirrors is drawn through the spheres-only type
 //! `Scene<N>`, the Lab #1 loop (its PNG is the one it always was); one with them through
 //! the full type `Scene<N, L, P, D>` with the host's capacities.
 //!
-//! Prints the resolution, the method, the render and PNG times and the peak memory.
+//! Prints the resolution, the method, the arithmetic the frame was drawn in (the integer
+//! kernel's per-frame rule decides where `--arithmetic integer` or the default asks for
+//! it), the render and PNG times and the peak memory.
 //! Any bad input (file, field or flag) is one message on stderr and exit code 2. The
 //! rules for the output (`--help` and the README say the same):
 //!
@@ -38,7 +41,7 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use embedded_graphics::{pixelcolor::Rgb888, prelude::*, primitives::Rectangle};
-use embedded_raytracer::{scene_file, Method, Options, Render, Sampling, SecondaryOrigin};
+use embedded_raytracer::{scene_file, Arithmetic, Method, Options, Render, Sampling, SecondaryOrigin};
 
 #[path = "common/standard.rs"]
 mod standard;
@@ -47,9 +50,10 @@ use standard::FullSceneFile;
 /// The usage line; the method flags list every choice from the method's own tables.
 fn usage() -> String {
     format!(
-        "usage: render SCENE.toml [--output OUT.png] [--force] {} [--secondary convex|epsilon:VALUE] \
+        "usage: render SCENE.toml [--output OUT.png] [--force] {} [--arithmetic {}] [--secondary convex|epsilon:VALUE] \
 [--sampling center|grid:N|adaptive:N] (default method {}, secondary {}, sampling {})",
         standard::method_flags(),
+        Arithmetic::NAMES.join("|"),
         Method::DEFAULT,
         secondary_name(Options::DEFAULT.secondary),
         Sampling::Center
@@ -96,6 +100,11 @@ mirrors (scenes/shadows.toml, scenes/mirrors.toml) are drawn when the file has t
   --force            replace a read-only output
   --stepping, --sphere-test, --sqrt
                      the render method (default: the crate's Method::DEFAULT)
+  --arithmetic f32|integer
+                     integer: the integer kernel where its per-frame rule takes the
+                     frame (spheres only, square pixels, within its range limits),
+                     else the f32 method above; without the flag Method::DEFAULT's
+                     (f32 on this host). The summary says which one drew the frame
   --secondary convex|epsilon:VALUE
                      where shadow and reflection rays start: convex (default; no
                      epsilon) or the textbook fixed epsilon, VALUE scene units (a
@@ -201,6 +210,7 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
             "--stepping" => "--stepping",
             "--sphere-test" => "--sphere-test",
             "--sqrt" => "--sqrt",
+            "--arithmetic" => "--arithmetic",
             "--secondary" => "--secondary",
             "--sampling" => "--sampling",
             "--force" => "--force",
@@ -249,6 +259,7 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
             "--sphere-test" => {
                 method.sphere_test = text.parse().map_err(|e| format!("--sphere-test: {e}"))?
             }
+            "--arithmetic" => method.arithmetic = text.parse().map_err(|e| format!("--arithmetic: {e}"))?,
             _ => method.sqrt = text.parse().map_err(|e| format!("--sqrt: {e}"))?,
         }
     }
@@ -287,20 +298,22 @@ fn run() -> Result<(), String> {
     // A stream may be this process's own standard output (`--output /dev/stdout`): the
     // summary then goes to standard error, after the PNG.
     let summary_to_stderr = matches!(destination, Destination::Stream { .. });
-    let (rendering, encoding) = match file.spheres_only() {
+    let (rendering, encoding, arithmetic) = match file.spheres_only() {
         // No light, plane or mirror: the spheres-only type, whose loop is Lab #1's.
         Some(spheres) => {
             let render = Render::new(&spheres.scene, &spheres.camera)
                 .with_method(args.method)
                 .with_sampling(args.sampling);
-            output(&render, size, destination, &args.output)?
+            let (r, e) = output(&render, size, destination, &args.output)?;
+            (r, e, render.arithmetic())
         }
         None => {
             let render = Render::new(&file.scene, &file.camera)
                 .with_method(args.method)
                 .with_options(Options::DEFAULT.with_secondary(args.secondary))
                 .with_sampling(args.sampling);
-            output(&render, size, destination, &args.output)?
+            let (r, e) = output(&render, size, destination, &args.output)?;
+            (r, e, render.arithmetic())
         }
     };
 
@@ -313,7 +326,7 @@ fn run() -> Result<(), String> {
         other => format!(", sampling {other}"),
     };
     let summary = format!(
-        "{}: {}x{} pixels{}, method {}{sampling}, {:.3} ms ({:.1} ns/pixel), PNG {:.3} ms{memory} -> {}",
+        "{}: {}x{} pixels{}, method {}, arithmetic {arithmetic}{sampling}, {:.3} ms ({:.1} ns/pixel), PNG {:.3} ms{memory} -> {}",
         args.scene.display(),
         size.width,
         size.height,

@@ -13,6 +13,8 @@
 //! Keys: ←/→ orbit around the look-at point (azimuth, 5° a press), ↑/↓ elevation; left
 //! mouse drag orbits too (half a turn per display width); wheel, `+`/`=` and `-` zoom;
 //! `R` resets the view; `M`/`Shift+M` next/previous method (all 30 of `Method::ALL`);
+//! `I` toggles the arithmetic (f32, or the integer kernel where its per-frame rule
+//! takes the frame: `integer/…` in the status bar, `→ f32` where it does not);
 //! `E`/`Shift+E` next/previous origin of the shadow and reflection rays (convex, then
 //! the textbook fixed epsilon at 1e-3, 1e-6 and 1e-1 scene units: [`SECONDARY`]);
 //! `A`/`Shift+A` next/previous sampling (`center`, `grid:2…4`, `adaptive:2…4`:
@@ -62,8 +64,8 @@ use embedded_graphics_simulator::{
 };
 use embedded_raytracer::{
     dither::{Bayer, DitherColor, DitherExt},
-    scene_file, Camera, CameraParams, Method, Options, Render, Sampling, Scene, SecondaryOrigin, SphereTest,
-    Sqrt, Stepping, Vec3,
+    scene_file, Arithmetic, Camera, CameraParams, Method, Options, Render, Sampling, Scene, SecondaryOrigin,
+    SphereTest, Sqrt, Stepping, Vec3,
 };
 
 #[path = "common/standard.rs"]
@@ -236,6 +238,20 @@ impl Loaded {
     /// the one whose shadow and reflection rays the secondary origin decides.
     fn has_features(&self) -> bool {
         matches!(self, Loaded::Full(_))
+    }
+
+    /// The arithmetic a frame of `method` is drawn in (the integer kernel's rule).
+    fn arithmetic(&self, camera: &Camera, method: Method) -> Arithmetic {
+        match self {
+            Loaded::Spheres(scene) => Render::<'_, MAX_SPHERES>::new(&**scene, camera)
+                .with_method(method)
+                .arithmetic(),
+            Loaded::Full(scene) => {
+                Render::<'_, MAX_SPHERES, Rgb888, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>::new(&**scene, camera)
+                    .with_method(method)
+                    .arithmetic()
+            }
+        }
     }
 }
 
@@ -675,6 +691,11 @@ impl App {
             };
         }
         let mut method = self.view.method.to_string();
+        if self.view.method.arithmetic == Arithmetic::Integer
+            && self.scene.arithmetic(&self.camera, self.view.method) == Arithmetic::F32
+        {
+            method += " → f32";
+        }
         if self.scene.has_features() {
             method = format!("{method} {}", secondary_label(self.view.secondary));
         }
@@ -737,6 +758,13 @@ impl App {
                     let k = all.iter().position(|&m| m == self.view.method).unwrap_or(0);
                     let next = if shift(keymod) { k + all.len() - 1 } else { k + 1 };
                     self.view.method = all[next % all.len()];
+                    self.dirty = true;
+                }
+                Keycode::I => {
+                    self.view.method.arithmetic = match self.view.method.arithmetic {
+                        Arithmetic::F32 => Arithmetic::Integer,
+                        Arithmetic::Integer => Arithmetic::F32,
+                    };
                     self.dirty = true;
                 }
                 Keycode::E => {
@@ -993,6 +1021,30 @@ mod tests {
             point: Point::new(10, 10),
         });
         assert_eq!(app.camera.params().eye, after);
+    }
+
+    /// `I` toggles the integer kernel: on the lab scene it draws another picture (its
+    /// own), and a second press is the f32 method's again.
+    #[test]
+    fn i_toggles_the_integer_kernel() {
+        let mut app = App::new(&args("scenes/lab.toml", &[])).unwrap();
+        let f32_frame = shade(&app.scene, &app.camera, &app.view, app.view.method).pixels;
+        app.handle(key(Keycode::I));
+        assert_eq!(
+            app.view.method,
+            Method::DEFAULT.with_arithmetic(Arithmetic::Integer)
+        );
+        let integer_frame = shade(&app.scene, &app.camera, &app.view, app.view.method).pixels;
+        assert!(
+            integer_frame != f32_frame,
+            "the integer kernel drew the f32 picture"
+        );
+        assert_eq!(
+            app.scene.arithmetic(&app.camera, app.view.method),
+            Arithmetic::Integer
+        );
+        app.handle(key(Keycode::I));
+        assert_eq!(app.view.method, Method::DEFAULT);
     }
 
     #[test]

@@ -123,6 +123,7 @@ pub mod camera;
 mod dispatch;
 pub mod dither;
 pub mod error;
+mod fixed;
 mod frame;
 pub mod hash;
 pub mod intersect;
@@ -161,7 +162,7 @@ pub use error::{
 pub use light::Light;
 pub use lit::SecondaryOrigin;
 pub use material::Material;
-pub use method::{Method, SphereTest, Sqrt, Stepping};
+pub use method::{Arithmetic, Method, SphereTest, Sqrt, Stepping, FPU_LESS};
 pub use plane::Plane;
 pub use render::{Options, Render, Sample};
 pub use sampling::{Sampling, SamplingError, SubSamples};

@@ -17,11 +17,12 @@ use embedded_graphics::primitives::Rectangle;
 use crate::camera::Camera;
 use crate::dispatch::{dispatch, Visit};
 use crate::error::BandError;
+use crate::fixed;
 use crate::frame;
 use crate::intersect::{TestStrategy, FD_ANCHOR_INTERVAL};
 use crate::lit::{self, SecondaryOrigin};
 use crate::math::SqrtFn;
-use crate::method::Method;
+use crate::method::{Arithmetic, Method};
 use crate::sampling::{AdaptiveRows, CenterRows, GridRows, Rows, Sampling};
 use crate::scene::{Hit, Scene};
 use crate::sink::{BandSink, DrawSink, RowSink, TraceSink};
@@ -352,6 +353,31 @@ where
 }
 
 impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'_, N, C, L, P, D> {
+    /// The arithmetic a whole-image frame of this render uses: the integer kernel where
+    /// the method asks for it and its per-frame rule admits the scene and camera
+    /// (see [`Arithmetic::Integer`]), `F32` otherwise.
+    #[must_use]
+    pub fn arithmetic(&self) -> Arithmetic {
+        let full = Rectangle::new(Point::zero(), self.camera.size());
+        let integer = self.method.arithmetic == Arithmetic::Integer
+            && !Scene::<N, L, P, D>::FEATURES
+            && fixed::IntFrame::new(
+                heapless::Vec::<_, N>::new().as_mut_view(),
+                self.scene.spheres(),
+                self.scene.background(),
+                self.camera,
+                self.options,
+                full,
+                Point::zero(),
+            )
+            .is_ok();
+        if integer {
+            Arithmetic::Integer
+        } else {
+            Arithmetic::F32
+        }
+    }
+
     /// The frame through the one dispatch: the part of the image at `offset` that
     /// `clip` shows, into `sink`.
     #[inline(always)]
@@ -366,6 +392,7 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
                 clip,
                 offset,
                 sink,
+                integer: self.method.arithmetic == Arithmetic::Integer,
             },
         )
     }
@@ -380,6 +407,8 @@ struct Frame<'a, 'k, const N: usize, const L: usize, const P: usize, const D: us
     clip: Rectangle,
     offset: Point,
     sink: &'k mut K,
+    /// The integer kernel was asked for (Lab #1 scenes only).
+    integer: bool,
 }
 
 impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink> Visit
@@ -413,6 +442,18 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
                 self.camera,
                 self.options,
                 (self.clip, rows),
+                self.offset,
+                self.sink,
+            )
+        } else if self.integer && G::CENTER {
+            // The arithmetic, once per frame: the integer kernel where its rule takes the
+            // frame, else this f32 method (both out of line, so their stacks never add).
+            // Sub-pixel rays are the f32 method's.
+            fixed::render_or_f32::<N, L, P, D, K, S, T, Q>(
+                self.scene,
+                self.camera,
+                self.options,
+                self.clip,
                 self.offset,
                 self.sink,
             )

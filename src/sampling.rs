@@ -254,6 +254,8 @@ impl Ident for Fnv {
 
 /// How a frame's rows are traced: the sampling's strategy type.
 pub(crate) trait Rows: Copy {
+    /// The one-ray row loop (the only one the integer kernel has).
+    const CENTER: bool;
     /// The part of the image the frame must trace for `clip` (adaptive sampling
     /// needs the ring of pixels around it).
     fn clip(&self, clip: Rectangle) -> Rectangle;
@@ -273,6 +275,7 @@ pub(crate) trait Rows: Copy {
 pub(crate) struct CenterRows;
 
 impl Rows for CenterRows {
+    const CENTER: bool = true;
     #[inline(always)]
     fn clip(&self, clip: Rectangle) -> Rectangle {
         clip
@@ -297,6 +300,7 @@ impl Rows for CenterRows {
 pub(crate) struct GridRows(pub u32);
 
 impl Rows for GridRows {
+    const CENTER: bool = false;
     #[inline(always)]
     fn clip(&self, clip: Rectangle) -> Rectangle {
         clip
@@ -381,6 +385,7 @@ fn differ(a: &RowBuf, k: usize, b: &RowBuf, m: usize) -> bool {
 }
 
 impl Rows for AdaptiveRows {
+    const CENTER: bool = false;
     #[inline(always)]
     fn clip(&self, clip: Rectangle) -> Rectangle {
         // One pixel more on every side: the neighbours' shared samples.

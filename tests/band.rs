@@ -42,7 +42,7 @@ fn bands_of_every_height_and_random_splits_equal_the_whole_render() {
         let file = common::load(name);
         let camera = common::shrink(&file.camera, 32, 24);
         let size = camera.size();
-        for method in Method::ALL {
+        for method in Method::ALL.into_iter().chain([Method::INTEGER]) {
             let want = whole(&file.scene, &camera, method);
             let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(method);
             for h in 1..=size.height {

@@ -1138,3 +1138,64 @@ fn sampling_flag() {
     );
     assert!(help.contains("sampling center)"), "{help}");
 }
+
+/// `--arithmetic`: without it the default method's arithmetic (f32 on the host) draws
+/// and the summary says so; `integer` draws the integer kernel's picture where its rule
+/// takes the frame (the lab scene) and the f32 method's where it does not (the grazing
+/// scene, whose eye is beside a sphere), and the summary names what drew it; a bad value
+/// is one message naming the flag, exit 2.
+#[test]
+fn arithmetic_flag() {
+    use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+    use embedded_raytracer::{scene_file, Arithmetic, Method, Render};
+    let dir = scratch("arithmetic");
+    let out = dir.join("out.png");
+    let png = |scene: &str, args: &[&str]| {
+        let o = run(&[&[scene, "--output", out.to_str().unwrap(), "--force"][..], args].concat());
+        assert_rendered(&o);
+        let summary = String::from_utf8_lossy(&o.stdout).into_owned();
+        (summary, decode(&std::fs::read(&out).unwrap()).2)
+    };
+    let traced = |scene: &str, method: Method| {
+        let file: scene_file::SceneFile<8> = scene_file::load(scene).unwrap();
+        let mut pixels = Vec::new();
+        Render::<'_, 8, Rgb888>::new(&file.scene, &file.camera)
+            .with_method(method)
+            .trace(|s| pixels.extend([s.color.r(), s.color.g(), s.color.b()]));
+        pixels
+    };
+    let (summary, default) = png("scenes/lab.toml", &[]);
+    assert!(
+        summary.contains("method direct/auto/exact, arithmetic f32,"),
+        "{summary}"
+    );
+    assert!(default == traced("scenes/lab.toml", Method::DEFAULT));
+    let (summary, integer) = png("scenes/lab.toml", &["--arithmetic", "integer"]);
+    assert!(
+        summary.contains("method integer/direct/auto/exact, arithmetic integer,"),
+        "{summary}"
+    );
+    assert!(integer == traced("scenes/lab.toml", Method::INTEGER));
+    assert!(integer != default, "the integer kernel drew the f32 picture");
+    let (summary, f32_png) = png("scenes/lab.toml", &["--arithmetic=f32"]);
+    assert!(summary.contains("arithmetic f32,"), "{summary}");
+    assert!(f32_png == default);
+    let (summary, grazing) = png("scenes/grazing.toml", &["--arithmetic", "integer"]);
+    assert!(
+        summary.contains("method integer/direct/auto/exact, arithmetic f32,"),
+        "{summary}"
+    );
+    let f32_method = Method::INTEGER.with_arithmetic(Arithmetic::F32);
+    assert!(grazing == traced("scenes/grazing.toml", f32_method));
+    let o = run(&[
+        "scenes/lab.toml",
+        "--output",
+        out.to_str().unwrap(),
+        "--arithmetic",
+        "fixed",
+    ]);
+    assert_refused(
+        &o,
+        "--arithmetic: unknown arithmetic: expected one of f32, integer",
+    );
+}

@@ -72,7 +72,7 @@ fn clipped_and_offset_draws_equal_the_whole_render_on_lab() {
             Rectangle::new(Point::new(60, 30), Size::new(200, 1)),
         ),
     ];
-    for method in Method::ALL {
+    for method in Method::ALL.into_iter().chain([Method::INTEGER]) {
         for (offset, clip) in cases {
             assert!(check_clip(&lab.scene, &camera, method, offset, target, clip) > 0);
         }
@@ -93,7 +93,7 @@ fn clipped_draws_equal_the_whole_render_on_random_scenes() {
         let (scene, camera) = random_case(&mut rng);
         let size = camera.size();
         let target = Size::new(size.width + 8, size.height + 8);
-        for method in Method::ALL {
+        for method in Method::ALL.into_iter().chain([Method::INTEGER]) {
             let offset = Point::new(rng.range(-10.0, 10.0) as i32, rng.range(-10.0, 10.0) as i32);
             let x0 = rng.range(-4.0, size.width as f32) as i32;
             let y0 = rng.range(-4.0, size.height as f32) as i32;

@@ -126,7 +126,7 @@ fn firmware_bands_equal_the_whole_render_on_every_standard_scene_and_method() {
     for name in common::SCENES {
         let file = common::load(name);
         let camera = at_size(file.camera.params(), FIRMWARE_SIZE);
-        for method in Method::ALL {
+        for method in Method::ALL.into_iter().chain([Method::INTEGER]) {
             let want = whole(&file.scene, &camera, method);
             let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(method);
             let got = two_core_frame(&render, FIRMWARE_SIZE, split::BAND_ROWS);
@@ -135,10 +135,10 @@ fn firmware_bands_equal_the_whole_render_on_every_standard_scene_and_method() {
                 "{name} {method}: two-core bands differ from the whole render"
             );
         }
-        // The firmware's method and pixel format: Rgb565 (sent high byte first:
-        // tests/band_wire.rs).
-        let want = whole(&file.scene, &camera, Method::default());
-        let rgb565 = Render::<_, Rgb565>::new(&file.scene, &camera);
+        // The firmware's method on the Pico (the integer kernel, the default without an
+        // FPU) and pixel format: Rgb565 (sent high byte first: tests/band_wire.rs).
+        let want = whole(&file.scene, &camera, Method::INTEGER);
+        let rgb565 = Render::<_, Rgb565>::new(&file.scene, &camera).with_method(Method::INTEGER);
         let got = two_core_frame(&rgb565, FIRMWARE_SIZE, split::BAND_ROWS);
         let want565: Vec<Rgb565> = want.iter().map(|&c| c.into()).collect();
         assert!(
@@ -154,7 +154,7 @@ fn every_method_every_scene_every_band_height_equals_the_whole_render() {
     for name in common::SCENES {
         let file = common::load(name);
         let camera = at_size(file.camera.params(), size);
-        for method in Method::ALL {
+        for method in Method::ALL.into_iter().chain([Method::INTEGER]) {
             let want = whole(&file.scene, &camera, method);
             let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(method);
             // Bands that divide the height or not, an odd or even count of them, one

@@ -1,8 +1,8 @@
 //! The measurement every QEMU firmware example runs (`qemu_cortex_m4`, `qemu_cortex_m0`,
 //! `qemu_rv32`): a platform supplies an instruction counter, a stack painter and an
 //! output channel ([`Platform`]); this module renders every standard Lab #1 scene with
-//! every method of `Method::ALL` into a [`PixelHash`] at 240×240 and prints one line per
-//! scene and method in the format `examples/common/qemu_output.rs` parses:
+//! every method of `Method::ALL` (and, on chips without an FPU, `Method::INTEGER`) into
+//! a [`PixelHash`] at 240×240 and prints one line per scene and method in the format `examples/common/qemu_output.rs` parses:
 //!
 //! ```text
 //! hash lab incremental/robust/exact 0x0123456789abcdef pixels 57600 instr 3456789 ipp 60.0 stack 312
@@ -35,6 +35,17 @@ use embedded_raytracer::{
 };
 
 use crate::scenes;
+
+/// Whether the Lab #1 scenes are measured with the integer kernel
+/// ([`Method::INTEGER`]) after `Method::ALL`: on the chips without an FPU (Cortex-M0,
+/// RV32IMC), for which it is made, and on the Cortex-M4F when built with the
+/// environment variable `MEASURE_INTEGER` set (not in its committed run, whose lines
+/// `.ci/firmware` compares one for one):
+/// `MEASURE_INTEGER=1 cargo run --release --example qemu_cortex_m4 --target thumbv7em-none-eabihf`.
+pub const INTEGER_TOO: bool = cfg!(any(
+    all(target_arch = "arm", not(target_abi = "eabihf")),
+    target_arch = "riscv32"
+)) || option_env!("MEASURE_INTEGER").is_some();
 
 /// Every scene is rendered at this size (its own camera otherwise).
 pub const SIZE: Size = Size::new(240, 240);
@@ -71,7 +82,10 @@ pub trait Platform {
 }
 
 /// The render under test, never inlined so that its whole frame lies below the
-/// measuring function's stack pointer.
+/// measuring function's stack pointer. An `f32` method (`Method::ALL`) is passed at
+/// run time; the integer kernel has its own function, [`render_integer`], with its
+/// method a constant, as a firmware would write it (a run-time method that may ask for
+/// either arithmetic links both for every method: twice the flash).
 #[inline(never)]
 fn render<const N: usize, const L: usize, const P: usize, const D: usize>(
     scene: &Scene<N, L, P, D>,
@@ -79,7 +93,22 @@ fn render<const N: usize, const L: usize, const P: usize, const D: usize>(
     method: Method,
     target: &mut PixelHash,
 ) {
-    let Ok(()) = Render::new(scene, camera).with_method(method).draw(target);
+    // The f32 fields only: the arithmetic is then a constant and the integer path is
+    // not linked here.
+    let f32_method = Method::new(method.stepping, method.sphere_test, method.sqrt);
+    let Ok(()) = Render::new(scene, camera).with_method(f32_method).draw(target);
+}
+
+/// [`render`] with [`Method::INTEGER`].
+#[inline(never)]
+fn render_integer<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    target: &mut PixelHash,
+) {
+    let Ok(()) = Render::new(scene, camera)
+        .with_method(Method::INTEGER)
+        .draw(target);
 }
 
 /// The render of a scene with lights, planes or mirrors under test, with its options;
@@ -402,16 +431,26 @@ impl<P: Platform> Run<P> {
         let Some(camera) = self.camera(name, params) else {
             return;
         };
-        for method in Method::ALL {
+        for method in Method::ALL
+            .into_iter()
+            .chain(INTEGER_TOO.then_some(Method::INTEGER))
+        {
+            let draw = |target: &mut PixelHash| {
+                if method == Method::INTEGER {
+                    render_integer(scene, &camera, target);
+                } else {
+                    render(scene, &camera, method, target);
+                }
+            };
             // Timed pass (the counter's interrupt on).
             let mut hash = PixelHash::new(SIZE);
-            let instr = self.timed(|| render(scene, &camera, method, &mut hash));
+            let instr = self.timed(|| draw(&mut hash));
             // Stack pass: the counter's interrupt off (it would push its frame onto the
             // render's stack), the counter keeps running. Ticks lost meanwhile are
             // harmless: only differences within one timed pass are used.
             self.platform.quiet(true);
             let mut again = PixelHash::new(SIZE);
-            let stack = stack_of(&self.platform, || render(scene, &camera, method, &mut again));
+            let stack = stack_of(&self.platform, || draw(&mut again));
             self.platform.quiet(false);
             self.report(name, method, "", &hash, &again, instr, stack);
         }

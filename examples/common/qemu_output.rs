@@ -43,6 +43,8 @@ pub struct QemuOutput {
     pub sqrt: Option<(u64, u64)>,
     /// `(pixels, instructions)` of the sink alone.
     pub sink: Option<(u64, u64)>,
+    /// The firmware's `Method::DEFAULT` (its `default METHOD` line).
+    pub default: Option<String>,
     /// The final `result ok` line was printed.
     pub ok: bool,
 }
@@ -135,6 +137,7 @@ impl QemuOutput {
                     ))
                 }
                 Some("result") => out.ok = words.get(1) == Some(&"ok"),
+                Some("default") => out.default = words.get(1).map(|m| m.to_string()),
                 Some(first) if out.name.is_none() && first.starts_with("qemu_") && first.ends_with(':') => {
                     out.name = Some(first.trim_end_matches(':').to_string());
                 }

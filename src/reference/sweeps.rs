@@ -917,3 +917,138 @@ pub fn horizon_rows(width: u32, height: u32, offset: f64) -> Vec<HorizonRow> {
     });
     out
 }
+
+// ---------------------------------------------------------------------------------
+// The integer kernel's range limits: where its per-frame rule stops taking the frame.
+// ---------------------------------------------------------------------------------
+
+/// One point of an integer-kernel sweep: the swept value, whether the rule took the
+/// integer kernel, and the render's metrics against the reference.
+#[derive(Clone, Copy, Debug)]
+pub struct IntegerPoint {
+    /// The swept value.
+    pub value: f64,
+    /// The rule took the integer kernel.
+    pub integer: bool,
+    /// The render against the reference.
+    pub metrics: Metrics,
+}
+
+/// What an integer-kernel sweep varies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IntegerSweep {
+    /// One sphere filling half of a 64×64 image, distance/radius 10^(k/4), k = 4…19.
+    DistanceRadius,
+    /// The lab's yellow sphere (r = 0.35) with a second sphere ever farther behind it
+    /// (kept at the same size on screen), 96×96: the frame's extent (farthest
+    /// `|L| + r`) over the near sphere's radius.
+    Extent,
+    /// The lab scene at 96×96 with a vertical field of view of 10° … 170°.
+    FieldOfView,
+}
+
+impl IntegerSweep {
+    /// Every sweep, in the table's order.
+    pub const ALL: [IntegerSweep; 3] = [Self::DistanceRadius, Self::Extent, Self::FieldOfView];
+
+    /// The swept quantity's name.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::DistanceRadius => "distance/radius",
+            Self::Extent => "scene extent / radius",
+            Self::FieldOfView => "field of view (°)",
+        }
+    }
+}
+
+/// `Method::INTEGER` over the sweep `kind`, each point against the reference.
+#[must_use]
+pub fn integer_sweep(kind: IntegerSweep) -> Vec<IntegerPoint> {
+    let up = Vec3::new(0.0, 1.0, 0.0);
+    let run = |value: f64, scene: &Scene<2>, params: CameraParams| {
+        let camera = params.build().ok()?;
+        let kernel = Render::<2, Rgb888>::new(scene, &camera).with_method(Method::INTEGER);
+        let metrics = compare(&kernel, &render(scene, &camera));
+        Some(IntegerPoint {
+            value,
+            integer: kernel.arithmetic() == crate::method::Arithmetic::Integer,
+            metrics,
+        })
+    };
+    let mut points = Vec::new();
+    match kind {
+        IntegerSweep::DistanceRadius => {
+            for k in 4..=19 {
+                let ratio = libm::pow(10.0, f64::from(k) / 4.0);
+                let dist = 5.0f32;
+                let radius = (f64::from(dist) / ratio) as f32;
+                // The sphere spans half the image.
+                let fov = 4.0 * libm::atanf(radius / dist);
+                let scene = Scene::<2>::from_array(
+                    [Sphere::new(Vec3::ZERO, radius, Rgb888::new(200, 150, 90))],
+                    Rgb888::BLACK,
+                );
+                let params =
+                    CameraParams::new(Vec3::new(0.0, 0.0, dist), Vec3::ZERO, up, fov, Size::new(64, 64));
+                points.extend(run(ratio, &scene, params));
+            }
+        }
+        IntegerSweep::Extent => {
+            for k in 0..=16 {
+                let far = libm::powf(10.0, 1.0 + k as f32 / 4.0);
+                let scene = Scene::<2>::from_array(
+                    [
+                        Sphere::new(Vec3::new(0.5, -0.9, 1.6), 0.35, Rgb888::new(255, 255, 64)),
+                        Sphere::new(
+                            Vec3::new(-1.0, 0.5, 5.0 - far),
+                            far * 0.2,
+                            Rgb888::new(64, 255, 255),
+                        ),
+                    ],
+                    Rgb888::BLACK,
+                );
+                let params = CameraParams::new(
+                    Vec3::new(0.0, 0.0, 5.0),
+                    Vec3::ZERO,
+                    up,
+                    60f32.to_radians(),
+                    Size::new(96, 96),
+                );
+                points.extend(run(f64::from(far) * 1.2 / 0.35, &scene, params));
+            }
+        }
+        IntegerSweep::FieldOfView => {
+            let scene = Scene::<2>::from_array(
+                [
+                    Sphere::new(Vec3::ZERO, 1.0, Rgb888::new(255, 64, 64)),
+                    Sphere::new(Vec3::new(0.5, -0.9, 1.6), 0.35, Rgb888::new(255, 255, 64)),
+                ],
+                Rgb888::BLACK,
+            );
+            for fov in (10..=170).step_by(10) {
+                let params = CameraParams::new(
+                    Vec3::new(0.0, 0.0, 5.0),
+                    Vec3::ZERO,
+                    up,
+                    (fov as f32).to_radians(),
+                    Size::new(96, 96),
+                );
+                points.extend(run(f64::from(fov), &scene, params));
+            }
+        }
+    }
+    points
+}
+
+/// The last swept value the rule takes and the first it refuses (`None` where the
+/// sweep has none), given points in increasing difficulty.
+#[must_use]
+pub fn integer_limit(points: &[IntegerPoint]) -> (Option<f64>, Option<f64>) {
+    let last = points.iter().rposition(|p| p.integer);
+    let first_refused = points.iter().position(|p| !p.integer);
+    (
+        last.and_then(|k| points.get(k)).map(|p| p.value),
+        first_refused.and_then(|k| points.get(k)).map(|p| p.value),
+    )
+}

@@ -1,0 +1,172 @@
+//! The integer kernel (`Arithmetic::Integer`) against the f64 reference: where its
+//! per-frame rule takes a frame, no coverage error and every shade within one level;
+//! the rule's limits (distance/radius, resolution, field of view, scene extent) at the
+//! points where it stops taking the frame; clip and band change no pixel.
+#![cfg(not(target_os = "none"))]
+
+mod common;
+
+use common::{load, SCENES};
+use embedded_graphics::geometry::Size;
+use embedded_graphics::pixelcolor::Rgb888;
+use embedded_raytracer::reference::sweeps::{integer_limit, integer_sweep, IntegerSweep};
+use embedded_raytracer::{reference, Arithmetic, CameraParams, Method, Render, Vec3};
+
+/// Every standard scene at its own size and at 240×240: the rule's choice, and where
+/// it takes the integer kernel, 0 coverage errors and ≤ 1 level against the reference.
+#[test]
+fn standard_scenes_against_reference() {
+    for name in SCENES {
+        let file = load(name);
+        for size in [file.camera.size(), Size::new(240, 240)] {
+            let camera = CameraParams {
+                size,
+                ..*file.camera.params()
+            }
+            .build()
+            .unwrap();
+            let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(Method::INTEGER);
+            let chosen = render.arithmetic();
+            let reference = reference::render(&file.scene, &camera);
+            let m = reference::compare(&render, &reference);
+            println!(
+                "{name} {}x{}: {chosen}, coverage errors {}, shade max {}, color max {}, undecidable {}",
+                size.width, size.height, m.coverage_errors, m.shade_max, m.color_max, m.undecidable
+            );
+            if chosen == Arithmetic::Integer {
+                assert_eq!(m.coverage_errors, 0, "{name} {size:?}: {m:?}");
+                assert!(m.shade_max <= 1, "{name} {size:?}: {m:?}");
+            }
+            assert_eq!(m.bad_samples, 0);
+            assert_eq!(m.non_finite, 0);
+        }
+    }
+}
+
+/// Where the rule takes the integer kernel it draws what the reference draws: no
+/// coverage error, shades within one level.
+fn exact_where_chosen(what: &str, chosen: Arithmetic, m: &reference::Metrics) {
+    if chosen == Arithmetic::Integer {
+        assert_eq!(m.coverage_errors, 0, "{what}: {m:?}");
+        assert!(m.shade_max <= 1, "{what}: {m:?}");
+    }
+}
+
+/// A sweep of `reference::sweeps::integer_sweep`: exact wherever chosen, and the rule
+/// stops taking the frame once and for all; `(last taken, first refused)`.
+fn limits(kind: IntegerSweep) -> (f64, f64) {
+    let points = integer_sweep(kind);
+    for p in &points {
+        println!(
+            "{} {:.0}: integer {}, {:?}",
+            kind.name(),
+            p.value,
+            p.integer,
+            p.metrics.coverage_errors
+        );
+        let chosen = if p.integer {
+            Arithmetic::Integer
+        } else {
+            Arithmetic::F32
+        };
+        exact_where_chosen(&format!("{} {}", kind.name(), p.value), chosen, &p.metrics);
+    }
+    let (last, refused) = integer_limit(&points);
+    let (last, refused) = (
+        last.expect("taken at the sweep's start"),
+        refused.expect("refused at its end"),
+    );
+    assert!(last < refused, "{kind:?}: taken again after refusing: {points:?}");
+    (last, refused)
+}
+
+/// Distance/radius: one sphere filling half of a 64×64 image, ever farther and
+/// smaller (16 ratios 10^(k/4) from 10; a narrower field of view than the last is
+/// below the camera's `MIN_PIXEL_SIZE`). The rule's shade bound needs `ρ = λ·r` of
+/// about a thousand units, and `λ·|L| ≤ 2²⁵`: the integer kernel is taken up to
+/// 10^4.25 ≈ 17,783 and refused from 10^4.5 ≈ 31,623 (measured), exact up to there.
+#[test]
+fn distance_radius_limit() {
+    let (last, refused) = limits(IntegerSweep::DistanceRadius);
+    assert!(
+        (17_000.0..18_000.0).contains(&last),
+        "last distance/radius taken: {last}"
+    );
+    assert!(
+        (31_000.0..32_000.0).contains(&refused),
+        "first refused: {refused}"
+    );
+}
+
+/// Scene extent: the lab's yellow sphere (radius 0.35, 3.5 from the eye) with a second
+/// sphere ever farther behind it (scaled to keep its size on screen). One `λ` serves
+/// the frame and must hold the farthest sphere, so the near one's `ρ` shrinks: the rule
+/// takes the frame up to an extent (farthest |L| + r) of 19,280 near-sphere radii and
+/// refuses it from 34,286 (measured), exact up to there.
+#[test]
+fn scene_extent_limit() {
+    let (last, refused) = limits(IntegerSweep::Extent);
+    assert!(
+        (19_000.0..20_000.0).contains(&last),
+        "last extent/radius taken: {last}"
+    );
+    assert!(
+        (34_000.0..35_000.0).contains(&refused),
+        "first refused: {refused}"
+    );
+}
+
+/// Field of view: two lab spheres from 10° to 170° (square pixels, 96×96). The shade's
+/// one division keeps about 15 bits of `a·ρ` at the image's corner and fewer towards
+/// its centre, where `a` is smaller by `1 + R²/Fz²` (R the corner's distance, Fz the
+/// focal length): the rule takes the frame up to 130° and refuses it from 140°
+/// (measured), exact up to there.
+#[test]
+fn field_of_view_limit() {
+    assert_eq!(limits(IntegerSweep::FieldOfView), (130.0, 140.0));
+}
+
+/// Resolution: the lab scene from 16×16 to 8192×8192 pixels (the integer pixel unit
+/// 2⁻ᵏ shrinks as the image grows, so `|d| ≤ 2²⁶` holds at every size up to
+/// `MAX_RESOLUTION`): chosen at every size. The reference comparison runs on a strip
+/// of rows through the spheres (the whole image at the small sizes).
+#[test]
+fn resolution_never_limits() {
+    let file = load("lab");
+    for n in [16u32, 64, 256, 1024, 4096, 8192] {
+        let params = CameraParams {
+            size: Size::new(n, n),
+            ..*file.camera.params()
+        };
+        let camera = params.build().unwrap();
+        let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(Method::INTEGER);
+        assert_eq!(render.arithmetic(), Arithmetic::Integer, "{n}×{n}");
+        if n <= 256 {
+            let m = reference::compare(&render, &reference::render(&file.scene, &camera));
+            exact_where_chosen(&format!("{n}×{n}"), Arithmetic::Integer, &m);
+        }
+    }
+}
+
+/// Non-square pixels, an eye inside a sphere and a sphere beside the eye are drawn in
+/// `f32` (the rule refuses them), and the picture is then exactly the `f32` method's.
+#[test]
+fn refused_frames_are_the_f32_methods() {
+    let file = load("lab");
+    let wide = CameraParams {
+        fov_x: Some(1.5),
+        ..*file.camera.params()
+    };
+    let inside = CameraParams {
+        eye: Vec3::new(0.0, 0.0, 0.5),
+        ..*file.camera.params()
+    };
+    for params in [wide, inside] {
+        let camera = params.build().unwrap();
+        let int = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(Method::INTEGER);
+        assert_eq!(int.arithmetic(), Arithmetic::F32);
+        let f32_method = Method::INTEGER.with_arithmetic(Arithmetic::F32);
+        let float = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(f32_method);
+        assert!(common::trace(int) == common::trace(float));
+    }
+}

@@ -51,12 +51,12 @@ use standard::FullSceneFile;
 fn usage() -> String {
     format!(
         "usage: render SCENE.toml [--output OUT.png] [--force] {} [--arithmetic {}] [--secondary convex|epsilon:VALUE] \
-[--sampling center|grid:N|adaptive:N] (default method {}, secondary {}, sampling {})",
+[--sampling center|grid:N|adaptive:N] (default method {}, sampling {}, secondary {})",
         standard::method_flags(),
         Arithmetic::NAMES.join("|"),
         Method::DEFAULT,
-        secondary_name(Options::DEFAULT.secondary),
-        Sampling::Center
+        Sampling::Center,
+        secondary_name(Options::DEFAULT.secondary)
     )
 }
 

@@ -1136,7 +1136,7 @@ fn sampling_flag() {
             .contains("[--sampling center|grid:N|adaptive:N]"),
         "{help}"
     );
-    assert!(help.contains("sampling center)"), "{help}");
+    assert!(help.contains("sampling center, "), "{help}");
 }
 
 /// `--arithmetic`: without it the default method's arithmetic (f32 on the host) draws

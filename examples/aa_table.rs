@@ -9,9 +9,9 @@
 //! ```
 //!
 //! Edge pixels are the ones `Adaptive(4)` traced with the grid (`Sample::rays > 1`),
-//! the same set for every row of a scene. Scenes wider than 320 pixels are drawn at
-//! 320 pixels wide (same field of view and aspect) to keep the reference's 256 rays per
-//! pixel affordable. The output is deterministic (the reference's threads split rows,
+//! the same set for every row of a scene. Scenes wider than 256 pixels (adaptive
+//! sampling's row buffer) are drawn at 256 pixels wide (same vertical field of view and
+//! aspect). The output is deterministic (the reference's threads split rows,
 //! each pixel computed alone).
 
 use std::fmt::Write as _;
@@ -25,8 +25,9 @@ use embedded_raytracer::{Camera, Render, Sampling, Scene};
 mod standard;
 use standard::{FEATURE_SCENES, SCENES};
 
-/// The largest image width the table renders at.
-const MAX_WIDTH: u32 = 320;
+/// The largest image width the table renders at: adaptive sampling's row buffer
+/// (`sampling::ADAPTIVE_MAX_WIDTH`; a wider image samples every pixel).
+const MAX_WIDTH: u32 = embedded_raytracer::sampling::ADAPTIVE_MAX_WIDTH as u32;
 
 fn main() {
     let mut out = String::new();

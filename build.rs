@@ -38,6 +38,7 @@ fn main() {
         std::fs::write(out.join("memory.x"), memory).expect("write memory.x to OUT_DIR");
         println!("cargo::rustc-link-search={}", out.display());
     }
+    srgb_tables();
     for file in [
         "memory-stm32f4.x",
         "memory-nrf51.x",
@@ -46,4 +47,39 @@ fn main() {
     ] {
         println!("cargo::rerun-if-changed={file}");
     }
+}
+
+/// The anti-aliasing's sRGB tables (IEC 61966-2-1), written to `OUT_DIR/srgb_tables.rs`
+/// for `src/sampling.rs`: 8-bit level to linear light (`round(65535·L)`), and the 255
+/// linear thresholds between neighbouring levels (`round(16·65535·L((k + ½)/255))`),
+/// where the encoded value is exactly `k + ½` (rounding to nearest once).
+fn srgb_tables() {
+    fn linear(c: f64) -> f64 {
+        if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    }
+    let decode: Vec<String> = (0..256)
+        .map(|k| format!("{}", (linear(f64::from(k) / 255.0) * 65535.0).round() as u32))
+        .collect();
+    let thresholds: Vec<String> = (0..255)
+        .map(|k| {
+            format!(
+                "{}",
+                (linear((f64::from(k) + 0.5) / 255.0) * 16.0 * 65535.0).round() as u32
+            )
+        })
+        .collect();
+    let text = format!(
+        "/// 8-bit sRGB level to linear light, `round(65535·L)`.\n\
+         pub(crate) const SRGB_TO_LINEAR: [u16; 256] = [{}];\n\
+         /// Linear light (×16·65535) where the sRGB encoding is `k + ½` levels.\n\
+         pub(crate) const LINEAR_THRESHOLDS: [u32; 255] = [{}];\n",
+        decode.join(", "),
+        thresholds.join(", ")
+    );
+    let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
+    std::fs::write(out.join("srgb_tables.rs"), text).expect("write srgb_tables.rs to OUT_DIR");
 }

@@ -3,7 +3,7 @@
 //! ```text
 //! cargo run --release --example render -- scenes/lab.toml --output lab.png \
 //!     [--stepping …] [--sphere-test …] [--sqrt …] [--arithmetic f32|integer] \
-//!     [--secondary convex|epsilon:VALUE] \
+//!     [--secondary convex|epsilon:VALUE] [--sampling center|grid:N|adaptive:N] \
 //!     [--force]   # --help lists the choices
 //! ```
 //!
@@ -41,7 +41,7 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use embedded_graphics::{pixelcolor::Rgb888, prelude::*, primitives::Rectangle};
-use embedded_raytracer::{scene_file, Arithmetic, Method, Options, Render, SecondaryOrigin};
+use embedded_raytracer::{scene_file, Arithmetic, Method, Options, Render, Sampling, SecondaryOrigin};
 
 #[path = "common/standard.rs"]
 mod standard;
@@ -51,10 +51,11 @@ use standard::FullSceneFile;
 fn usage() -> String {
     format!(
         "usage: render SCENE.toml [--output OUT.png] [--force] {} [--arithmetic {}] [--secondary convex|epsilon:VALUE] \
-(default method {}, secondary {})",
+[--sampling center|grid:N|adaptive:N] (default method {}, sampling {}, secondary {})",
         standard::method_flags(),
         Arithmetic::NAMES.join("|"),
         Method::DEFAULT,
+        Sampling::Center,
         secondary_name(Options::DEFAULT.secondary)
     )
 }
@@ -108,6 +109,10 @@ mirrors (scenes/shadows.toml, scenes/mirrors.toml) are drawn when the file has t
                      where shadow and reflection rays start: convex (default; no
                      epsilon) or the textbook fixed epsilon, VALUE scene units (a
                      positive finite number); only scenes with lights or mirrors use it
+  --sampling center|grid:N|adaptive:N
+                     rays per pixel: the centre ray (default), an N x N grid in every
+                     pixel, or the grid only where an edge can cross the pixel (N = 2,
+                     3 or 4), averaged in linear light
   --help, -h         this text
 
 Flags take their value as the next argument or after `=` (--output=out.png); a value
@@ -133,6 +138,7 @@ struct Args {
     output: PathBuf,
     method: Method,
     secondary: SecondaryOrigin,
+    sampling: Sampling,
     force: bool,
 }
 
@@ -181,6 +187,7 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
     let mut output = None;
     let mut method = Method::default();
     let mut secondary = Options::DEFAULT.secondary;
+    let mut sampling = Sampling::Center;
     let mut force = false;
     let mut seen: Vec<&'static str> = Vec::new();
     let mut flags_ended = false;
@@ -205,6 +212,7 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
             "--sqrt" => "--sqrt",
             "--arithmetic" => "--arithmetic",
             "--secondary" => "--secondary",
+            "--sampling" => "--sampling",
             "--force" => "--force",
             _ => return Err(format!("unknown flag `{}`", arg.to_string_lossy())),
         };
@@ -242,6 +250,11 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
             .ok_or_else(|| format!("{flag}: `{}` is not a valid choice", value.to_string_lossy()))?;
         match flag {
             "--secondary" => secondary = parse_secondary(text)?,
+            "--sampling" => {
+                sampling = text
+                    .parse()
+                    .map_err(|e| format!("--sampling: {e}, got `{text}`"))?
+            }
             "--stepping" => method.stepping = text.parse().map_err(|e| format!("--stepping: {e}"))?,
             "--sphere-test" => {
                 method.sphere_test = text.parse().map_err(|e| format!("--sphere-test: {e}"))?
@@ -265,6 +278,7 @@ fn parse_args(args: impl IntoIterator<Item = OsString>) -> Result<Command, Strin
         output,
         method,
         secondary,
+        sampling,
         force,
     }))
 }
@@ -287,14 +301,17 @@ fn run() -> Result<(), String> {
     let (rendering, encoding, arithmetic) = match file.spheres_only() {
         // No light, plane or mirror: the spheres-only type, whose loop is Lab #1's.
         Some(spheres) => {
-            let render = Render::new(&spheres.scene, &spheres.camera).with_method(args.method);
+            let render = Render::new(&spheres.scene, &spheres.camera)
+                .with_method(args.method)
+                .with_sampling(args.sampling);
             let (r, e) = output(&render, size, destination, &args.output)?;
             (r, e, render.arithmetic())
         }
         None => {
             let render = Render::new(&file.scene, &file.camera)
                 .with_method(args.method)
-                .with_options(Options::DEFAULT.with_secondary(args.secondary));
+                .with_options(Options::DEFAULT.with_secondary(args.secondary))
+                .with_sampling(args.sampling);
             let (r, e) = output(&render, size, destination, &args.output)?;
             (r, e, render.arithmetic())
         }
@@ -304,8 +321,12 @@ fn run() -> Result<(), String> {
     let memory = peak_memory().map_or(String::new(), |kib| {
         format!(", peak memory {:.1} MB", kib as f64 * 1024.0 / 1e6)
     });
+    let sampling = match args.sampling {
+        Sampling::Center => String::new(),
+        other => format!(", sampling {other}"),
+    };
     let summary = format!(
-        "{}: {}x{} pixels{}, method {}, arithmetic {arithmetic}, {:.3} ms ({:.1} ns/pixel), PNG {:.3} ms{memory} -> {}",
+        "{}: {}x{} pixels{}, method {}, arithmetic {arithmetic}{sampling}, {:.3} ms ({:.1} ns/pixel), PNG {:.3} ms{memory} -> {}",
         args.scene.display(),
         size.width,
         size.height,

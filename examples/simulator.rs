@@ -17,6 +17,8 @@
 //! takes the frame: `integer/…` in the status bar, `→ f32` where it does not);
 //! `E`/`Shift+E` next/previous origin of the shadow and reflection rays (convex, then
 //! the textbook fixed epsilon at 1e-3, 1e-6 and 1e-1 scene units: [`SECONDARY`]);
+//! `A`/`Shift+A` next/previous sampling (`center`, `grid:2…4`, `adaptive:2…4`:
+//! `Sampling::ALL`, shown after the model in the status bar);
 //! `D` toggles the difference view (pixels where the shown frame differs from the
 //! `direct/robust/exact` render with the convex origin, through the same display
 //! model, in magenta); `Tab`/`Shift+Tab` or `1`–`9` pick the display model; `B`
@@ -62,7 +64,7 @@ use embedded_graphics_simulator::{
 };
 use embedded_raytracer::{
     dither::{Bayer, DitherColor, DitherExt},
-    scene_file, Arithmetic, Camera, CameraParams, Method, Options, Render, Scene, SecondaryOrigin,
+    scene_file, Arithmetic, Camera, CameraParams, Method, Options, Render, Sampling, Scene, SecondaryOrigin,
     SphereTest, Sqrt, Stepping, Vec3,
 };
 
@@ -100,7 +102,7 @@ const DIFF_COLOR: Rgb888 = Rgb888::new(255, 0, 255);
 fn usage() -> String {
     format!(
         "usage: simulator [SCENE.toml] [--display MODEL] [--size WxH] [--scale N] \
-[--bayer 4|8] [--theme oled-blue|oled-white] {} [--diff] [--no-overlay] \
+[--bayer 4|8] [--theme oled-blue|oled-white] {} [--sampling center|grid:N|adaptive:N] [--diff] [--no-overlay] \
 [--screenshot OUT.png [--frames N]]\n  MODEL: rgb888 rgb565 gray8 gray4 gray4-dither gray2 \
 gray2-dither binary binary-dither",
         standard::method_flags()
@@ -179,6 +181,8 @@ struct View {
     method: Method,
     /// Where shadow and reflection rays start (scenes with lights or mirrors).
     secondary: SecondaryOrigin,
+    /// Rays per pixel.
+    sampling: Sampling,
     bayer: Bayer,
     theme: BinaryColorTheme,
 }
@@ -251,17 +255,18 @@ impl Loaded {
     }
 }
 
-/// What to render: scene, camera, method, options.
+/// What to render: scene, camera, method, options, sampling.
 type Input<'a, const N: usize, const L: usize, const P: usize, const D: usize> =
-    (&'a Scene<N, L, P, D>, &'a Camera, Method, Options);
+    (&'a Scene<N, L, P, D>, &'a Camera, Method, Options, Sampling);
 
 /// Renders `view` of the scene (with `view`'s secondary origin) through the display
 /// model and converts to window colours.
 fn shade(scene: &Loaded, camera: &Camera, view: &View, method: Method) -> Shown {
     let options = Options::DEFAULT.with_secondary(view.secondary);
+    let s = view.sampling;
     match scene {
-        Loaded::Spheres(scene) => shade_scene((&**scene, camera, method, options), view),
-        Loaded::Full(scene) => shade_scene((&**scene, camera, method, options), view),
+        Loaded::Spheres(scene) => shade_scene((&**scene, camera, method, options, s), view),
+        Loaded::Full(scene) => shade_scene((&**scene, camera, method, options, s), view),
     }
 }
 
@@ -298,7 +303,8 @@ where
     let mut display = SimulatorDisplay::<C>::new(camera.size());
     let render = Render::new(input.0, input.1)
         .with_method(input.2)
-        .with_options(input.3);
+        .with_options(input.3)
+        .with_sampling(input.4);
     let start = Instant::now();
     let Ok(()) = render.draw(&mut display); // the simulator cannot fail
     let render_time = start.elapsed();
@@ -321,7 +327,8 @@ where
     let mut display = SimulatorDisplay::<C>::new(camera.size());
     let render = Render::new(input.0, input.1)
         .with_method(input.2)
-        .with_options(input.3);
+        .with_options(input.3)
+        .with_sampling(input.4);
     let start = Instant::now();
     let Ok(()) = render.draw(&mut display.dithered_with(bayer));
     let render_time = start.elapsed();
@@ -420,6 +427,7 @@ struct Args {
     size: Option<Size>,
     scale: Option<u32>,
     method: Method,
+    sampling: Sampling,
     bayer: Bayer,
     theme: BinaryColorTheme,
     diff: bool,
@@ -435,6 +443,7 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Args, String> {
         size: None,
         scale: None,
         method: Method::default(),
+        sampling: Sampling::Center,
         bayer: Bayer::Eight,
         theme: BinaryColorTheme::OledBlue,
         diff: false,
@@ -464,6 +473,10 @@ fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Args, String> {
                     return Err("--scale: must be 1 to 16".into());
                 }
                 a.scale = Some(n);
+            }
+            "--sampling" => {
+                let v = value(&arg)?;
+                a.sampling = v.parse().map_err(|e| format!("--sampling: {e}, got `{v}`"))?;
             }
             "--bayer" => {
                 a.bayer = match value(&arg)?.as_str() {
@@ -567,6 +580,7 @@ impl App {
                 model: args.model,
                 method: args.method,
                 secondary: Options::DEFAULT.secondary,
+                sampling: args.sampling,
                 bayer: args.bayer,
                 theme: args.theme,
             },
@@ -696,7 +710,11 @@ impl App {
                 -o.zoom_steps
             )
         };
-        [format!("{ms:.2} ms {model}"), method, third]
+        [
+            format!("{ms:.2} ms {model} {}", self.view.sampling),
+            method,
+            third,
+        ]
     }
 
     /// The load error over the (last good) image, wrapped to the display width.
@@ -757,6 +775,13 @@ impl App {
                         .unwrap_or(0);
                     let next = if shift(keymod) { k + n - 1 } else { k + 1 };
                     self.view.secondary = SECONDARY[next % n];
+                    self.dirty = true;
+                }
+                Keycode::A => {
+                    let all = Sampling::ALL;
+                    let k = all.iter().position(|&s| s == self.view.sampling).unwrap_or(0);
+                    let next = if shift(keymod) { k + all.len() - 1 } else { k + 1 };
+                    self.view.sampling = all[next % all.len()];
                     self.dirty = true;
                 }
                 Keycode::D => {
@@ -1046,6 +1071,54 @@ mod tests {
         assert_eq!(app.view.model, Model::BinaryDither);
     }
 
+    /// `A` cycles every sampling (back to `center` after a full cycle, `Shift+A`
+    /// backwards), the status bar names it, and the shown frame is the kernel's render
+    /// with it.
+    #[test]
+    fn a_cycles_the_sampling_and_the_status_bar_shows_it() {
+        let mut app = App::new(&args(
+            "scenes/lab.toml",
+            &["--size", "48x36", "--display", "rgb888"],
+        ))
+        .unwrap();
+        let mut seen = Vec::new();
+        for _ in 0..Sampling::ALL.len() {
+            seen.push(app.view.sampling);
+            let line = &app.status(Duration::ZERO, 0)[0];
+            assert!(line.ends_with(&format!(" {}", app.view.sampling)), "{line}");
+            app.handle(key(Keycode::A));
+        }
+        assert_eq!(seen, Sampling::ALL);
+        let flagged = args("scenes/lab.toml", &["--sampling", "grid:3"]);
+        assert_eq!(flagged.sampling, Sampling::grid(3).unwrap());
+        assert_eq!(app.view.sampling, Sampling::Center);
+        app.handle(SimulatorEvent::KeyDown {
+            keycode: Keycode::A,
+            keymod: Mod::LSHIFTMOD,
+            repeat: false,
+        });
+        assert_eq!(app.view.sampling, Sampling::adaptive(4).unwrap());
+        let shown = shade(&app.scene, &app.camera, &app.view, app.view.method).pixels;
+        let Loaded::Spheres(scene) = &app.scene else {
+            panic!("lab is spheres-only")
+        };
+        let mut expected = Vec::new();
+        Render::<'_, MAX_SPHERES, Rgb888>::new(&**scene, &app.camera)
+            .with_sampling(Sampling::adaptive(4).unwrap())
+            .trace(|s| expected.push(s.color));
+        assert_eq!(shown, expected);
+        let center = shade(
+            &app.scene,
+            &app.camera,
+            &View {
+                sampling: Sampling::Center,
+                ..app.view
+            },
+            app.view.method,
+        );
+        assert_ne!(shown, center.pixels, "adaptive sampling changed no pixel");
+    }
+
     #[test]
     fn difference_view_marks_exactly_the_differing_pixels() {
         let small = ["--size", "160x120"];
@@ -1237,6 +1310,8 @@ mod tests {
             &["--size", "12"],
             &["--scale", "0"],
             &["--bayer", "3"],
+            &["--sampling", "grid:5"],
+            &["--sampling", "box"],
             &["--frames", "2"],
             &["--frobnicate"],
         ] {

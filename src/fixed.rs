@@ -211,7 +211,14 @@ fn f32_frame<
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
-    crate::frame::render::<N, L, P, D, K, S, T, Q>(scene, camera, options, clip, offset, sink)
+    crate::frame::render::<N, L, P, D, K, S, T, Q, crate::sampling::CenterRows>(
+        scene,
+        camera,
+        options,
+        (clip, crate::sampling::CenterRows),
+        offset,
+        sink,
+    )
 }
 
 /// Draws a frame of a scene without lights, planes or mirrors with the integer kernel,
@@ -764,6 +771,7 @@ impl Iterator for IntSamples<'_, '_, '_> {
             direction,
             hit,
             color,
+            rays: 1,
         })
     }
 

@@ -16,7 +16,7 @@ use crate::camera::Camera;
 use crate::intersect::{RowGeometry, Scale, SphereGeom, TestStrategy};
 use crate::math::SqrtFn;
 use crate::render::Options;
-use crate::scanline;
+use crate::sampling::Rows;
 use crate::scanline::Lab1Row;
 use crate::scene::Scene;
 use crate::shade::{Lab1, Shader};
@@ -69,11 +69,12 @@ pub(crate) fn render<
     S: Stepper,
     T: TestStrategy,
     Q: SqrtFn,
+    G: Rows,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
-    clip: Rectangle,
+    (clip, rows): (Rectangle, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
@@ -81,13 +82,19 @@ pub(crate) fn render<
     // once, never moved (a by-value `Frame` holding the `Vec` would be copied on
     // return, doubling the render's stack).
     let mut spheres = Vec::new();
-    let Some(frame) =
-        Frame::<T, Lab1>::new::<N, L, P, D, S>(scene, camera, options, clip, offset, &mut spheres, 0.0)
-    else {
+    let Some(frame) = Frame::<T, Lab1>::new::<N, L, P, D, S>(
+        scene,
+        camera,
+        options,
+        rows.clip(clip),
+        offset,
+        &mut spheres,
+        0.0,
+    ) else {
         return Ok(()); // nothing visible
     };
     let (w, background) = (camera.w(), frame.background);
-    scanline::draw_rows::<N, K, S, T, Q, Lab1, _>(&frame, sink, |_, _, _| Lab1Row { w, background })
+    rows.draw_rows::<N, K, S, T, Q, Lab1, _>(&frame, sink, |_, _, _| Lab1Row { w, background })
 }
 
 impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {

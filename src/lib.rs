@@ -137,6 +137,7 @@ pub mod plane;
 #[cfg(host_std)]
 pub mod reference;
 pub mod render;
+pub mod sampling;
 mod scanline;
 pub mod scene;
 #[cfg(host_std)]
@@ -164,6 +165,7 @@ pub use material::Material;
 pub use method::{Arithmetic, Method, SphereTest, Sqrt, Stepping, FPU_LESS};
 pub use plane::Plane;
 pub use render::{Options, Render, Sample};
+pub use sampling::{Sampling, SamplingError, SubSamples};
 pub use scene::{Hit, Scene, Settings, MAX_DEPTH};
 pub use sphere::Sphere;
 pub use vec3::Vec3;

@@ -37,7 +37,8 @@ use crate::light::Light;
 use crate::material::Material;
 use crate::math::{sqrt_exact, SqrtFn, UNIT_ROUNDOFF};
 use crate::render::Options;
-use crate::scanline::{self, RowTracer};
+use crate::sampling::{Fnv, Ident, Rows};
+use crate::scanline::RowTracer;
 use crate::scene::Scene;
 use crate::shade::{channels, lab1_factor, Shader};
 use crate::sink::RowSink;
@@ -334,20 +335,33 @@ pub(crate) fn render<
     S: Stepper,
     T: TestStrategy,
     Q: SqrtFn,
+    G: Rows,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
-    clip: Rectangle,
+    (clip, rows): (Rectangle, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
     match options.secondary {
-        SecondaryOrigin::Convex => {
-            render_with::<N, L, P, D, K, S, T, Q, ConvexExit>(scene, camera, options, 0.0, clip, offset, sink)
-        }
-        SecondaryOrigin::Epsilon(eps) => render_with::<N, L, P, D, K, S, T, Q, EpsilonExit>(
-            scene, camera, options, eps, clip, offset, sink,
+        SecondaryOrigin::Convex => render_with::<N, L, P, D, K, S, T, Q, ConvexExit, G>(
+            scene,
+            camera,
+            options,
+            0.0,
+            (clip, rows),
+            offset,
+            sink,
+        ),
+        SecondaryOrigin::Epsilon(eps) => render_with::<N, L, P, D, K, S, T, Q, EpsilonExit, G>(
+            scene,
+            camera,
+            options,
+            eps,
+            (clip, rows),
+            offset,
+            sink,
         ),
     }
 }
@@ -363,12 +377,13 @@ fn render_with<
     T: TestStrategy,
     Q: SqrtFn,
     O: Exit,
+    G: Rows,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
     eps: f32,
-    clip: Rectangle,
+    (clip, rows): (Rectangle, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
@@ -391,7 +406,7 @@ fn render_with<
         scene,
         camera,
         options,
-        clip,
+        rows.clip(clip),
         offset,
         &mut spheres,
         others,
@@ -445,7 +460,7 @@ fn render_with<
         i0: frame.i0,
         i1: frame.i1,
     };
-    scanline::draw_rows::<N, K, S, T, Q, LitSphere, _>(&frame, sink, |j, lo, hi| {
+    rows.draw_rows::<N, K, S, T, Q, LitSphere, _>(&frame, sink, |j, lo, hi| {
         LitRow::<T, Q, O, N, L, P, D>::new(&lit, j, lo, hi)
     })
 }
@@ -463,6 +478,9 @@ struct LitRow<'f, 's, T: TestStrategy, Q, O, const N: usize, const L: usize, con
 
 /// No occluder cached.
 const NONE: Object = usize::MAX;
+
+/// A reflected ray's identity where it hits nothing.
+const REFLECTS_NOTHING: u32 = 0x9e37_79b9;
 
 impl<
         'f,
@@ -776,6 +794,149 @@ impl<
         };
         Rgb888::new(round(acc[0]), round(acc[1]), round(acc[2]))
     }
+
+    /// [`Self::local`] with the ray's identity (which lights reach the point) mixed
+    /// into `id`: the copy adaptive sampling's rays use, so that the one-ray path's
+    /// code stays as it is.
+    ///
+    /// The local colour at `p` (not rounded): Lab #1 without lights, otherwise
+    /// ambient + diffuse + specular with a shadow ray per light.
+    #[inline(always)]
+    fn local_with<I: Ident>(
+        &mut self,
+        k: Object,
+        s: &Surface,
+        p: Vec3,
+        dir: Vec3,
+        column: Option<u32>,
+        id: &mut I,
+    ) -> [f32; 3] {
+        if L == 0 || self.f.lights.is_empty() {
+            let kz = lab1_factor(s.lab_nz);
+            return s.rgb.map(|c| c * kz);
+        }
+        let f = self.f;
+        // v, the unit vector back along the ray, only where a highlight needs it.
+        let v = if s.material.specular > 0.0 {
+            dir * (-1.0 / sqrt_exact(dir.dot(dir)))
+        } else {
+            Vec3::ZERO
+        };
+        let (mut diffuse, mut spec) = (0.0f32, 0.0f32);
+        for (index, light) in f.lights.iter().enumerate() {
+            let (l, dist, intensity) = match *light {
+                FrameLight::Directional { l, intensity } => (l, f32::INFINITY, intensity),
+                FrameLight::Point { p: at, intensity } => {
+                    let to = at - p;
+                    let dist = sqrt_exact(to.dot(to));
+                    (to * (1.0 / dist), dist, intensity)
+                }
+            };
+            let nl = s.n.dot(l);
+            // Only a light in front of the surface lights it (and needs a shadow ray).
+            if !(nl > 0.0) {
+                continue;
+            }
+            if f.shadows {
+                let o = O::start(p, l, f.eps);
+                let dist = if O::TESTS_SELF { dist - f.eps } else { dist };
+                let blocked = self.occluded(index, o, l, dist, k, s.inside, column);
+                // Which lights reach the surface: a shadow boundary is an edge.
+                id.mix(2 * index as u32 + 1 + u32::from(blocked));
+                if blocked {
+                    continue;
+                }
+            }
+            diffuse += intensity * nl;
+            if s.material.specular > 0.0 {
+                // n·h with h = (l + v)/|l + v|: one root and one division, no vector
+                // scaling (|l + v| ≤ 2: no overflow). No highlight where l + v = 0.
+                let half = l + v;
+                let h2 = half.dot(half);
+                if h2 > 0.0 {
+                    let nh = s.n.dot(half) / sqrt_exact(h2);
+                    if nh > 0.0 {
+                        spec += intensity * s.material.specular * phong_power(nh, s.material.shininess);
+                    }
+                }
+            }
+        }
+        let light = f.ambient + diffuse;
+        let spec = 255.0 * spec;
+        s.rgb.map(|c| {
+            let x = c * light + spec;
+            if x > 255.0 {
+                255.0
+            } else {
+                x
+            }
+        })
+    }
+
+    /// [`Self::color`] with the ray's identity (see [`RowTracer::identified`]) mixed
+    /// into `id`, for adaptive sampling (a copy: the one-ray path's code stays as it
+    /// is); `CULL`: the primary ray is column `i`'s centre ray, so the row's shadow
+    /// spans hold for it (a sub-pixel ray is not culled).
+    #[inline(always)]
+    fn color_with<I: Ident, const CULL: bool>(
+        &mut self,
+        first: Option<(Object, f32)>,
+        d: Vec3,
+        i: u32,
+        id: &mut I,
+    ) -> Rgb888 {
+        let f = self.f;
+        let mut acc = [0.0f32; 3];
+        let mut weight = 1.0f32;
+        let (mut origin, mut dir, mut hit) = (Vec3::ZERO, d, first);
+        let mut depth = 0u8;
+        loop {
+            let Some((k, t)) = hit else {
+                if depth > 0 {
+                    id.mix(REFLECTS_NOTHING);
+                }
+                add(&mut acc, weight, f.bg);
+                break;
+            };
+            let p = origin + dir * t;
+            let s = self.surface(k, p, dir);
+            if I::KEPT && depth == 0 {
+                self.fine_checker(k, t, dir, id);
+            }
+            // The object, and its colour there (a checker cell).
+            id.mix(k as u32 + 1);
+            id.mix(s.rgb.iter().fold(0, |h, c| h.rotate_left(11) ^ c.to_bits()));
+            // The shadow spans hold for the primary ray only.
+            let column = (CULL && depth == 0).then_some(i);
+            let local = self.local_with(k, &s, p, dir, column, id);
+            let r = if D == 0 { 0.0 } else { s.material.reflect };
+            if !(r > 0.0) {
+                add(&mut acc, weight, local);
+                break;
+            }
+            add(&mut acc, weight * (1.0 - r), local);
+            weight *= r;
+            if depth >= f.max_depth {
+                // At the deepest level the background stands in for the reflection.
+                add(&mut acc, weight, f.bg);
+                break;
+            }
+            // The mirror direction d − 2(d·n)n (the same for n and −n).
+            dir = dir - s.n * (2.0 * dir.dot(s.n));
+            origin = O::start(p, dir, f.eps);
+            hit = self.closest(origin, dir, k, s.inside);
+            depth += 1;
+        }
+        let round = |x: f32| {
+            let v = (x + 0.5) as i32;
+            if v > 255 {
+                255
+            } else {
+                v as u8
+            }
+        };
+        Rgb888::new(round(acc[0]), round(acc[1]), round(acc[2]))
+    }
 }
 
 impl<
@@ -801,11 +962,57 @@ impl<
         i: u32,
         d: Vec3,
     ) -> (Option<(usize, f32)>, Rgb888) {
+        let best = self.primary::<true>(sphere_hit, i, d);
+        (best, self.color(best, d, i))
+    }
+
+    #[inline(always)]
+    fn identified(
+        &mut self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, LitSphere>)>,
+        i: u32,
+        d: Vec3,
+    ) -> (u32, Rgb888) {
+        let best = self.primary::<true>(sphere_hit, i, d);
+        self.color_identified::<true>(best, d, i)
+    }
+
+    #[inline(always)]
+    fn sub_sample(
+        &mut self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, LitSphere>)>,
+        d: Vec3,
+    ) -> (u32, Rgb888) {
+        let best = self.primary::<false>(sphere_hit, 0, d);
+        self.color_identified::<false>(best, d, 0)
+    }
+}
+
+impl<
+        's,
+        T: TestStrategy,
+        Q: SqrtFn,
+        O: Exit,
+        const N: usize,
+        const L: usize,
+        const P: usize,
+        const D: usize,
+    > LitRow<'_, 's, T, Q, O, N, L, P, D>
+{
+    /// The closest hit of the primary ray `d`: the sphere hit, then the planes (with
+    /// `CULL`, only those whose row span holds column `i`).
+    #[inline(always)]
+    fn primary<const CULL: bool>(
+        &self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, LitSphere>)>,
+        i: u32,
+        d: Vec3,
+    ) -> Option<(Object, f32)> {
         let mut best = sphere_hit.map(|(k, t, _)| (k, t));
         let mut t_max = best.map_or(f32::INFINITY, |(_, t)| t);
         let n = self.f.spheres.len();
         for (k, (plane, &(lo, len))) in self.f.planes.iter().zip(&self.spans).enumerate() {
-            if i.wrapping_sub(lo) < len {
+            if !CULL || i.wrapping_sub(lo) < len {
                 // t = (q·n)/(d·n): positive where d·n has the sign of q·n.
                 let t = plane.s / d.dot(plane.n);
                 if t > 0.0 && t < t_max {
@@ -814,7 +1021,46 @@ impl<
                 }
             }
         }
-        (best, self.color(best, d, i))
+        best
+    }
+
+    /// Whether the primary ray `dir` meeting object `k` at `t` sees a checker whose
+    /// cells are less than two pixel footprints wide (then `id.fine()`): moving to the
+    /// next pixel turns the ray by `du` (or `dv`), which moves its hit on the plane by
+    /// at most `t·|du|·(1 + |d|/|d·n|)`.
+    #[inline(always)]
+    fn fine_checker<I: Ident>(&self, k: Object, t: f32, dir: Vec3, id: &mut I) {
+        let f = self.f;
+        let Some(plane) = k.checked_sub(f.spheres.len()).and_then(|p| f.planes.get(p)) else {
+            return;
+        };
+        if plane.checker.is_none() {
+            return;
+        }
+        let step = f
+            .camera
+            .pixel_step()
+            .length()
+            .max(f.camera.scanline_step().length());
+        let dn = dir.dot(plane.n).abs();
+        let footprint = t * step * (1.0 + dir.length() / dn);
+        // NaN (a ray along the plane) fails the comparison: fine as well.
+        if !(footprint * plane.inv_size <= 0.5) {
+            id.fine();
+        }
+    }
+
+    /// [`Self::color_with`] with the identity: out of line, like [`Self::color`].
+    #[inline(never)]
+    fn color_identified<const CULL: bool>(
+        &mut self,
+        first: Option<(Object, f32)>,
+        d: Vec3,
+        i: u32,
+    ) -> (u32, Rgb888) {
+        let mut id = Fnv(0, false);
+        let c = self.color_with::<Fnv, CULL>(first, d, i, &mut id);
+        (id.get(), c)
     }
 }
 

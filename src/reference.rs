@@ -44,6 +44,7 @@ use crate::render::{Render, Sample};
 use crate::scene::Scene;
 use crate::vec3::Vec3;
 
+pub mod aa;
 pub mod lit;
 pub mod sweeps;
 

@@ -23,6 +23,7 @@ use crate::intersect::{TestStrategy, FD_ANCHOR_INTERVAL};
 use crate::lit::{self, SecondaryOrigin};
 use crate::math::SqrtFn;
 use crate::method::{Arithmetic, Method};
+use crate::sampling::{AdaptiveRows, CenterRows, GridRows, Rows, Sampling};
 use crate::scene::{Hit, Scene};
 use crate::sink::{BandSink, DrawSink, RowSink, TraceSink};
 use crate::stepping::Stepper;
@@ -118,6 +119,10 @@ pub struct Sample {
     pub hit: Option<Hit>,
     /// The shaded colour.
     pub color: Rgb888,
+    /// The rays averaged into `color`: 1 for the centre ray alone, `n²` where
+    /// [`Sampling`] traced the pixel's grid (then `hit` is `None`: several rays have
+    /// no single hit).
+    pub rays: u32,
 }
 
 /// A scene seen through a camera with a method, ready to draw.
@@ -150,6 +155,7 @@ pub struct Render<'a, const N: usize, C = Rgb888, const L: usize = 0, const P: u
     camera: &'a Camera,
     method: Method,
     options: Options,
+    sampling: Sampling,
     offset: Point,
     color: PhantomData<C>,
 }
@@ -163,6 +169,7 @@ impl<'a, const N: usize, C, const L: usize, const P: usize, const D: usize> Rend
             camera,
             method: Method::DEFAULT,
             options: Options::DEFAULT,
+            sampling: Sampling::Center,
             offset: Point::zero(),
             color: PhantomData,
         }
@@ -188,6 +195,48 @@ impl<'a, const N: usize, C, const L: usize, const P: usize, const D: usize> Rend
     pub const fn with_options(mut self, options: Options) -> Self {
         self.options = options;
         self
+    }
+
+    /// The same render with `sampling` rays per pixel (default [`Sampling::Center`]:
+    /// one, through the centre): a grid of sub-pixel rays averaged in linear light,
+    /// everywhere or only where an edge can cross the pixel. Matched once per frame;
+    /// see [`crate::sampling`]. A field of the render, not of [`Options`], so that a
+    /// render that never sets it links none of it, whatever its options.
+    ///
+    /// ```
+    /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::{Rgb565, Rgb888}, prelude::*};
+    /// use embedded_raytracer::{Camera, Render, Sampling, Scene, Sphere, Vec3};
+    ///
+    /// static SCENE: Scene<1> = Scene::from_array(
+    ///     [Sphere::new(Vec3::new(0.0, 0.0, 0.0), 1.0, Rgb888::new(255, 255, 255))],
+    ///     Rgb888::new(0, 0, 0),
+    /// );
+    /// let camera = Camera::new(
+    ///     Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0),
+    ///     0.5, Size::new(16, 16),
+    /// )?;
+    /// let sampling: Sampling = "adaptive:4".parse()?;
+    /// assert_eq!(sampling, Sampling::adaptive(4)?);
+    /// let mut display = MockDisplay::<Rgb565>::new();
+    /// Render::new(&SCENE, &camera).with_sampling(sampling).draw(&mut display)?;
+    /// // Inside the disc the centre ray alone; on its rim a grey between white and black.
+    /// assert_eq!(display.get_pixel(Point::new(8, 8)), Some(Rgb565::WHITE));
+    /// let rim = (0..16).filter_map(|i| display.get_pixel(Point::new(i, 8)))
+    ///     .filter(|c| *c != Rgb565::WHITE && *c != Rgb565::BLACK)
+    ///     .count();
+    /// assert!(rim >= 2, "{rim} grey pixels on row 8");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub const fn with_sampling(mut self, sampling: Sampling) -> Self {
+        self.sampling = sampling;
+        self
+    }
+
+    /// The sampling in use.
+    #[must_use]
+    pub const fn sampling(&self) -> Sampling {
+        self.sampling
     }
 
     /// The options in use.
@@ -339,6 +388,7 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
                 scene: self.scene,
                 camera: self.camera,
                 options: self.options,
+                sampling: self.sampling,
                 clip,
                 offset,
                 sink,
@@ -353,6 +403,7 @@ struct Frame<'a, 'k, const N: usize, const L: usize, const P: usize, const D: us
     scene: &'a Scene<N, L, P, D>,
     camera: &'a Camera,
     options: Options,
+    sampling: Sampling,
     clip: Rectangle,
     offset: Point,
     sink: &'k mut K,
@@ -366,20 +417,38 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
     type Output = Result<(), K::Error>;
     #[inline(always)]
     fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Self::Output {
+        // The sampling, once per frame: `Center` is the one-ray row loop.
+        match self.sampling {
+            Sampling::Center => self.with_rows::<S, T, Q, _>(CenterRows),
+            Sampling::Grid(n) => self.with_rows::<S, T, Q, _>(GridRows(n.get())),
+            Sampling::Adaptive(n) => {
+                let clip = self.clip;
+                self.with_rows::<S, T, Q, _>(AdaptiveRows { n: n.get(), clip })
+            }
+        }
+    }
+}
+
+impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
+    Frame<'_, '_, N, L, P, D, K>
+{
+    #[inline(always)]
+    fn with_rows<S: Stepper, T: TestStrategy, Q: SqrtFn, G: Rows>(self, rows: G) -> Result<(), K::Error> {
         // The scene's type decides the loop at compile time: Lab #1 on spheres, or the
         // scene-features path (lights, planes, mirrors).
         if Scene::<N, L, P, D>::FEATURES {
-            lit::render::<N, L, P, D, K, S, T, Q>(
+            lit::render::<N, L, P, D, K, S, T, Q, G>(
                 self.scene,
                 self.camera,
                 self.options,
-                self.clip,
+                (self.clip, rows),
                 self.offset,
                 self.sink,
             )
-        } else if self.integer {
+        } else if self.integer && G::CENTER {
             // The arithmetic, once per frame: the integer kernel where its rule takes the
             // frame, else this f32 method (both out of line, so their stacks never add).
+            // Sub-pixel rays are the f32 method's.
             fixed::render_or_f32::<N, L, P, D, K, S, T, Q>(
                 self.scene,
                 self.camera,
@@ -389,11 +458,11 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
                 self.sink,
             )
         } else {
-            frame::render::<N, L, P, D, K, S, T, Q>(
+            frame::render::<N, L, P, D, K, S, T, Q, G>(
                 self.scene,
                 self.camera,
                 self.options,
-                self.clip,
+                (self.clip, rows),
                 self.offset,
                 self.sink,
             )

@@ -41,6 +41,23 @@ pub(crate) trait RowTracer<'s, T: TestStrategy, Sh: Shader> {
         i: u32,
         d: Vec3,
     ) -> (Option<(usize, f32)>, Rgb888);
+    /// As [`Self::pixel`]'s colour, with the ray's identity for adaptive sampling
+    /// (`sampling.rs`): 0 where the ray hits nothing, otherwise a hash of what decides
+    /// the colour discontinuously (the object, and for the features path the checker
+    /// cell, the lights visible and what each reflected ray hit).
+    fn identified(
+        &mut self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, Sh>)>,
+        i: u32,
+        d: Vec3,
+    ) -> (u32, Rgb888);
+    /// A sub-pixel ray `d` (anywhere in the row's footprint, so no per-row span may
+    /// cull it) given its closest sphere hit over every sphere: identity and colour.
+    fn sub_sample(
+        &mut self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, Sh>)>,
+        d: Vec3,
+    ) -> (u32, Rgb888);
 }
 
 /// Lab #1 on spheres: the tracer of a scene without lights, planes or mirrors.
@@ -66,6 +83,26 @@ impl<'s, T: TestStrategy> RowTracer<'s, T, Lab1> for Lab1Row {
             Some((index, t, s)) => (Some((index, t)), Lab1::shade(&s.shade, self.w, d, t)),
             None => (None, self.background),
         }
+    }
+
+    #[inline(always)]
+    fn identified(
+        &mut self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, Lab1>)>,
+        i: u32,
+        d: Vec3,
+    ) -> (u32, Rgb888) {
+        let (hit, color) = <Self as RowTracer<'s, T, Lab1>>::pixel(self, sphere_hit, i, d);
+        (hit.map_or(0, |(index, _)| index as u32 + 1), color)
+    }
+
+    #[inline(always)]
+    fn sub_sample(
+        &mut self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, Lab1>)>,
+        d: Vec3,
+    ) -> (u32, Rgb888) {
+        <Self as RowTracer<'s, T, Lab1>>::identified(self, sphere_hit, 0, d)
     }
 }
 
@@ -127,7 +164,7 @@ where
 /// Out of line: its locals are dead before the row's pixels are traced, so they do not
 /// add to the pixel loop's stack.
 #[inline(never)]
-fn activate<'s, const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
+pub(crate) fn activate<'s, const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
     frame: &Frame<'s, T, Sh>,
     stepper: &mut S,
     j: u32,
@@ -201,7 +238,7 @@ pub(crate) struct Active<'s, T: TestStrategy, Sh: Shader> {
 }
 
 /// The pixels of one scanline, traced as the sink pulls them.
-struct RowPixels<'r, 's, S: Stepper, T: TestStrategy, Q, Sh: Shader, X> {
+pub(crate) struct RowPixels<'r, 's, S: Stepper, T: TestStrategy, Q, Sh: Shader, X> {
     stepper: S::Row,
     active: &'r mut [Active<'s, T, Sh>],
     /// Union of the active spans: outside it a pixel is background without a test.
@@ -281,6 +318,57 @@ impl<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T,
     }
 }
 
+impl<'r, 's, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>>
+    RowPixels<'r, 's, S, T, Q, Sh, X>
+{
+    /// Row `j` of the frame's visible columns, as [`draw_rows`] builds it, for a row
+    /// loop of its own (adaptive sampling's centre rays).
+    pub(crate) fn new(
+        frame: &Frame<'s, T, Sh>,
+        stepper: S::Row,
+        active: &'r mut [Active<'s, T, Sh>],
+        (lo_all, hi_all): (u32, u32),
+        tracer: X,
+        j: u32,
+    ) -> Self {
+        Self {
+            stepper,
+            active,
+            lo_all,
+            hi_all,
+            tracer,
+            scale: frame.scale,
+            i: frame.i0,
+            end: frame.i1,
+            j,
+            sqrt: PhantomData,
+        }
+    }
+
+    /// The next column's centre ray, exactly as [`Iterator::next`] traces it: its
+    /// identity ([`RowTracer::identified`]) and colour. Past the row's end: nothing hit.
+    #[inline(always)]
+    pub(crate) fn next_identified(&mut self) -> (u32, Rgb888) {
+        let i = self.i;
+        if i >= self.end {
+            return (0, self.tracer.background());
+        }
+        self.i += 1;
+        let d = self.stepper.next_direction();
+        if i >= self.lo_all && i < self.hi_all {
+            let best = self.closest(i, d);
+            self.tracer.identified(best, i, d)
+        } else {
+            (0, self.tracer.background())
+        }
+    }
+
+    /// The row's tracer (for sub-pixel rays).
+    pub(crate) fn tracer_mut(&mut self) -> &mut X {
+        &mut self.tracer
+    }
+}
+
 impl<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X> RowPixels<'_, 's, S, T, Q, Sh, X> {
     /// The closest hit of the ray `d` of column `i` (inside the union of the active
     /// spans): index, `t` and sphere.
@@ -335,6 +423,7 @@ impl<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T,
             direction: d,
             hit,
             color,
+            rays: 1,
         })
     }
 

@@ -81,6 +81,40 @@ impl Silhouette {
         }
     }
 
+    /// The ellipse's bounding box `[x0, x1] × [y0, y1]` (image coordinates, pixel
+    /// centres at integers) and a lower bound of its semi-minor axis (its area
+    /// `π·h0/√q` over `π` times an upper bound of its semi-major axis, the box's
+    /// half-diagonal); `None` when the silhouette is not a bounded ellipse.
+    pub(crate) fn bounds(&self) -> Option<([f32; 4], f32)> {
+        match *self {
+            Silhouette::All => None,
+            Silhouette::Ellipse {
+                y0i,
+                y0f,
+                q,
+                h0,
+                xc0,
+                kx,
+            } => {
+                let half_height = crate::math::sqrt_exact(h0 / q);
+                // Along a row the centre moves by kx per row: over ±half_height.
+                let half_width = kx.abs() * half_height + crate::math::sqrt_exact(h0);
+                let y0 = y0i + y0f;
+                let semi_major = crate::math::sqrt_exact(half_width * half_width + half_height * half_height);
+                let semi_minor = h0 / crate::math::sqrt_exact(q) / semi_major;
+                Some((
+                    [
+                        xc0 - half_width,
+                        xc0 + half_width,
+                        y0 - half_height,
+                        y0 + half_height,
+                    ],
+                    semi_minor,
+                ))
+            }
+        }
+    }
+
     /// The silhouette of the sphere (`l = centre − eye`, radius `radius`) for the
     /// camera, enlarged for the test's `margin` and the stepping's direction error
     /// bound `step_err`. `All` whenever culling cannot be proven safe.

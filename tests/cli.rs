@@ -1059,6 +1059,86 @@ fn secondary_origin_flag() {
     assert!(help.contains("secondary convex)"), "{help}");
 }
 
+/// `--sampling`: each choice's PNG is the kernel's render with it (spheres-only and lit
+/// files), the summary names a non-default one; a bad value is one message naming the
+/// flag, exit 2, and nothing written.
+#[test]
+fn sampling_flag() {
+    use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+    use embedded_raytracer::{scene_file, Render, Sampling};
+    let dir = scratch("sampling");
+    let lit = write(&dir, "lit.toml", LIT);
+    let s = write(&dir, "s.toml", GOOD);
+    let png = |file: &str, args: &[&str], out: &str| {
+        let o = run_in(&dir, &[&[file, "--output", out][..], args].concat());
+        assert_rendered(&o);
+        let summary = String::from_utf8_lossy(&o.stdout).into_owned();
+        (summary, decode(&std::fs::read(dir.join(out)).unwrap()).2)
+    };
+    let traced_lit = |sampling| {
+        let file = scene_file::load::<1, 2, 1, 3>(dir.join(lit)).unwrap();
+        let mut pixels = Vec::new();
+        Render::<'_, 1, Rgb888, 2, 1, 3>::new(&file.scene, &file.camera)
+            .with_sampling(sampling)
+            .trace(|s| pixels.extend([s.color.r(), s.color.g(), s.color.b()]));
+        pixels
+    };
+    let traced_spheres = |sampling| {
+        let file = scene_file::load::<8, 0, 0, 0>(dir.join(s)).unwrap();
+        let mut pixels = Vec::new();
+        Render::<'_, 8, Rgb888>::new(&file.scene, &file.camera)
+            .with_sampling(sampling)
+            .trace(|s| pixels.extend([s.color.r(), s.color.g(), s.color.b()]));
+        pixels
+    };
+    let (summary, default) = png(lit, &[], "default.png");
+    assert!(!summary.contains("sampling"), "{summary}");
+    let (_, center) = png(lit, &["--sampling", "center"], "center.png");
+    assert!(center == default);
+    for value in ["grid:2", "grid:3", "adaptive:4"] {
+        let sampling: Sampling = value.parse().unwrap();
+        let (summary, pixels) = png(lit, &[&format!("--sampling={value}")], "lit.png");
+        assert!(summary.contains(&format!("sampling {value},")), "{summary}");
+        assert!(pixels == traced_lit(sampling), "{value}");
+        assert!(pixels != default, "{value} changed no pixel");
+        let (_, pixels) = png(s, &["--sampling", value], "s.png");
+        assert!(pixels == traced_spheres(sampling), "spheres {value}");
+    }
+    let out = dir.join("keep.png");
+    std::fs::write(&out, b"sentinel").unwrap();
+    let out_s = out.to_str().unwrap();
+    for (value, expect) in [
+        (
+            "grid:5",
+            "--sampling: sub-samples per axis must be 2, 3 or 4, not 5, got `grid:5`",
+        ),
+        ("adaptive:1", "not 1, got `adaptive:1`"),
+        ("grid", "--sampling: expected center, grid:N or adaptive:N"),
+        ("box:2", "--sampling: expected center, grid:N or adaptive:N"),
+        ("adaptive:x", "got `adaptive:x`"),
+    ] {
+        assert_refused(
+            &run_in(&dir, &[lit, "--output", out_s, &format!("--sampling={value}")]),
+            expect,
+        );
+        assert_eq!(std::fs::read(&out).unwrap(), b"sentinel", "{value}");
+    }
+    assert_refused(&run_in(&dir, &[lit, "--sampling"]), "--sampling needs a value");
+    assert_refused(
+        &run_in(&dir, &[lit, "--sampling", "center", "--sampling=grid:2"]),
+        "--sampling is given twice",
+    );
+    let help = String::from_utf8_lossy(&run_in(&dir, &["--help"]).stdout).into_owned();
+    assert!(
+        help.lines()
+            .next()
+            .unwrap()
+            .contains("[--sampling center|grid:N|adaptive:N]"),
+        "{help}"
+    );
+    assert!(help.contains("sampling center, "), "{help}");
+}
+
 /// `--arithmetic`: without it the default method's arithmetic (f32 on the host) draws
 /// and the summary says so; `integer` draws the integer kernel's picture where its rule
 /// takes the frame (the lab scene) and the f32 method's where it does not (the grazing

@@ -30,7 +30,9 @@ use core::fmt;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use embedded_raytracer::{hash::PixelHash, math, Camera, CameraParams, Method, Options, Render, Scene};
+use embedded_raytracer::{
+    hash::PixelHash, math, Camera, CameraParams, Method, Options, Render, Sampling, Scene, SubSamples,
+};
 
 use crate::scenes;
 
@@ -125,6 +127,36 @@ fn render_features<const N: usize, const L: usize, const P: usize, const D: usiz
         .draw(target);
 }
 
+/// The render of one [`Sampling`] (default method and options) under test; never
+/// inlined, like [`render`].
+#[inline(never)]
+fn render_sampled<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    sampling: Sampling,
+    target: &mut PixelHash,
+) {
+    let Ok(()) = Render::new(scene, camera).with_sampling(sampling).draw(target);
+}
+
+/// The samplings [`Run::sampling_scenes`] measures: the centre ray, the 4 × 4 grid
+/// everywhere and where an edge can cross the pixel.
+pub const SAMPLINGS: [Sampling; 3] = [
+    Sampling::Center,
+    match SubSamples::new(4) {
+        Ok(n) => Sampling::Grid(n),
+        Err(_) => Sampling::Center,
+    },
+    match SubSamples::new(4) {
+        Ok(n) => Sampling::Adaptive(n),
+        Err(_) => Sampling::Center,
+    },
+];
+
+/// The scenes anti-aliasing is measured on: `lab` (the Lab #1 loop) and `shadows`
+/// (the features path).
+const SAMPLED_SCENES: [&str; 2] = ["lab", "shadows"];
+
 /// The sink alone, for scale: the same `PixelHash` fed 240 rows of 240 pixels through
 /// `fill_contiguous`, one call per row as a render makes them, with colours that cost
 /// one add each. A render's instructions minus these are the kernel's.
@@ -202,6 +234,22 @@ impl<P: Platform> scenes::EachScene for Features<'_, P> {
         camera: CameraParams,
     ) {
         self.0.measure_feature_scene(name, scene, camera);
+    }
+}
+
+/// The anti-aliasing renders ([`Run::sampling_scenes`]).
+struct Sampled<'r, P: Platform>(&'r mut Run<P>);
+
+impl<P: Platform> scenes::EachScene for Sampled<'_, P> {
+    fn scene<const N: usize, const L: usize, const PL: usize, const D: usize>(
+        &mut self,
+        name: &'static str,
+        scene: &'static Scene<N, L, PL, D>,
+        camera: CameraParams,
+    ) {
+        if SAMPLED_SCENES.contains(&name) {
+            self.0.measure_sampling(name, scene, camera);
+        }
     }
 }
 
@@ -432,6 +480,52 @@ impl<P: Platform> Run<P> {
             self.platform.quiet(false);
             self.report(name, method, suffix, &hash, &again, instr, stack);
         }
+    }
+
+    /// [`SAMPLINGS`] on one scene (default method), measured as
+    /// [`Run::measure_scene`] measures: `aa NAME SAMPLING HASH pixels P instr I ipp X
+    /// stack S` (`tests/sampling.rs` checks the hashes against the host's).
+    pub fn measure_sampling<const N: usize, const L: usize, const PL: usize, const D: usize>(
+        &mut self,
+        name: &str,
+        scene: &Scene<N, L, PL, D>,
+        params: CameraParams,
+    ) {
+        let Some(camera) = self.camera(name, params) else {
+            return;
+        };
+        for sampling in SAMPLINGS {
+            let mut hash = PixelHash::new(SIZE);
+            let instr = self.timed(|| render_sampled(scene, &camera, sampling, &mut hash));
+            self.platform.quiet(true);
+            let mut again = PixelHash::new(SIZE);
+            let stack = stack_of(&self.platform, || {
+                render_sampled(scene, &camera, sampling, &mut again)
+            });
+            self.platform.quiet(false);
+            let pixels = hash.pixels();
+            let ipp10 = ipp10(instr, pixels);
+            self.platform.print(format_args!(
+                "aa {} {} {:#018x} pixels {} instr {} ipp {}.{} stack {}",
+                name,
+                sampling,
+                hash.hash(),
+                pixels,
+                instr,
+                ipp10 / 10,
+                ipp10 % 10,
+                stack.unwrap_or(0)
+            ));
+            if pixels != u64::from(SIZE.width) * u64::from(SIZE.height) || again != hash || stack.is_none() {
+                self.fail("anti-aliasing render");
+            }
+        }
+    }
+
+    /// Anti-aliasing on [`SAMPLED_SCENES`].
+    pub fn sampling_scenes(&mut self) {
+        scenes::for_each(&mut Sampled(self));
+        scenes::for_each_feature(&mut Sampled(self));
     }
 
     /// Every standard Lab #1 scene (`examples/common/scenes.rs`' `for_each`), every

@@ -13,7 +13,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_raytracer::{Camera, Render, Scene, Sphere, Vec3};
 #[allow(unused_imports)]
-pub use standard::{load, path, MAX_SPHERES, SCENES};
+pub use standard::{load, load_full, path, FEATURE_SCENES, MAX_SPHERES, SCENES};
 
 /// Everything a traced pixel is: the hit sphere and `t` (bits), the colour, and the
 /// ray direction (bits), so that two renders compare bit for bit.

@@ -1,0 +1,838 @@
+//! Anti-aliasing: how many rays a pixel gets, chosen once per frame like the method.
+//!
+//! - [`Sampling::Center`] (default): one ray through the pixel centre — the row loop of
+//!   `scanline.rs`, untouched.
+//! - [`Sampling::Grid`]`(n)`: `n × n` rays at offsets `((a + ½)/n − ½, (b + ½)/n − ½)`
+//!   pixel widths and heights from the centre along `u` and `−v`, averaged (box filter).
+//! - [`Sampling::Adaptive`]`(n)`: exactly `Grid(n)`'s rays in edge pixels, the centre
+//!   ray alone elsewhere.
+//!
+//! **Averaging in linear light.** Every ray's colour is the 8-bit colour the row
+//! tracer rounds once; it is decoded to linear light by a table (IEC 61966-2-1, built
+//! by `build.rs`: `round(65535·L)`), the `n²` values are summed in integers, and the
+//! sum is encoded by comparing it with the 255 linear thresholds where the encoded
+//! value is exactly `k + ½` levels: rounding to nearest, once, with no `powf` in the
+//! pixel loop. Decoding rounded samples instead of averaging the unrounded ones moves
+//! the result by at most one level (the unit test `rounded_samples_within_one_level`
+//! measures it over random sample sets: see its output).
+//!
+//! **Sub-pixel directions** are formed directly from the camera's per-frame steps
+//! (`F` the upper-left pixel's direction, `du`, `dv` the column and row steps), for
+//! every stepping: `d = (F + dv·y) + du·x` with `x = i + o_a`, `y = j + o_b`. Error
+//! bound: the offset `o` (exact for `n` = 2 and 4, one rounding of `≤ 2⁻²⁵` for 3) and
+//! `i + o` round by at most `2⁻²⁴·(|i| + 1)`, moving `d` by `≤ 2⁻²⁴·S`; the two products
+//! and two sums round by `≤ 4·2⁻²⁴·S` (`S = |F| + H·|dv| + W·|du|` as in `stepping.rs`):
+//! `|d − ideal| ≤ 2⁻²³·3·S`, within `Stepping::Direct`'s bound. The sphere test is the
+//! method's single-ray test (`TestStrategy::ray`, what secondary rays use: the
+//! forward-differenced test's row state belongs to the centre rays), tested against
+//! every sphere and plane (a row's spans hold for its centre line only).
+//!
+//! **Edge pixels** (`Adaptive`), conservatively:
+//! - *shared samples*: every centre ray is traced once, with an identity (what decides
+//!   its colour discontinuously: the object; in the features path also the checker
+//!   cell, which lights reach the point, what each reflected ray hit). A pixel whose
+//!   identity differs from one of its eight neighbours' is an edge pixel, and so is
+//!   that neighbour: any boundary between two centres is found on both sides of it.
+//!   Neighbours whose centre colours differ by more than [`CONTRAST`] levels are
+//!   marked the same way: where shading changes that fast across a pixel (a sphere's
+//!   rim, a highlight), its mean is not its centre's colour.
+//!   The identities are kept for two rows (a fixed buffer of [`ADAPTIVE_MAX_WIDTH`]
+//!   columns: 16-bit identities, centre colours and edge bits, 2,624 bytes), so each
+//!   row is emitted one row after it is traced; a clipped render traces the one-pixel
+//!   ring around the clip too, so a pixel never depends on the clip.
+//! - *detail finer than the pixels*: a centre ray that meets a checkered plane where
+//!   the pixel's footprint on it is more than half a cell wide (the cells alias: the
+//!   centres can agree by chance) makes its pixel an edge pixel.
+//! - *small silhouettes*: a sphere whose silhouette (its culling ellipse) has a
+//!   semi-minor axis under [`SMALL`] pixels may hold no pixel centre at all; every pixel
+//!   whose footprint meets its bounding box, widened by one pixel, is an edge pixel.
+//!
+//! What the rule can miss: a feature narrower than the spacing of the pixel centres
+//! that falls between them (the tip of a thin silhouette, a shadow or checker sliver,
+//! a small object seen in a mirror) where no centre in the 3×3 neighbourhood sees it;
+//! and two identities that collide in 16 bits (one in 65,536). The README's
+//! "Anti-aliasing" section measures how often Adaptive(4) differs from Grid(4).
+
+use core::fmt;
+use core::str::FromStr;
+
+use embedded_graphics::pixelcolor::Rgb888;
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use heapless::Vec;
+
+use crate::frame::{Frame, FrameSphere};
+use crate::intersect::TestStrategy;
+use crate::math::SqrtFn;
+use crate::render::Sample;
+use crate::scanline::{self, ColorRuns, PixelRow, RowPixels, RowTracer};
+use crate::shade::Shader;
+use crate::sink::RowSink;
+use crate::stepping::Stepper;
+use crate::vec3::Vec3;
+
+include!(concat!(env!("OUT_DIR"), "/srgb_tables.rs"));
+
+/// Rays per pixel; see the [module docs](self).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Sampling {
+    /// One ray through the pixel centre.
+    #[default]
+    Center,
+    /// `n × n` rays in every pixel, averaged in linear light.
+    Grid(SubSamples),
+    /// `n × n` rays where an edge can cross the pixel, the centre ray elsewhere.
+    Adaptive(SubSamples),
+}
+
+/// The `n` of an `n × n` grid: 2, 3 or 4 (checked by [`SubSamples::new`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SubSamples(u8);
+
+impl SubSamples {
+    /// `n × n` sub-samples.
+    ///
+    /// # Errors
+    ///
+    /// [`SamplingError::SubSamples`] unless `n` is 2, 3 or 4.
+    pub const fn new(n: u32) -> Result<Self, SamplingError> {
+        if n >= 2 && n <= 4 {
+            Ok(Self(n as u8))
+        } else {
+            Err(SamplingError::SubSamples(n))
+        }
+    }
+
+    /// `n`.
+    #[must_use]
+    pub const fn get(self) -> u32 {
+        self.0 as u32
+    }
+}
+
+impl Sampling {
+    /// [`Sampling::Grid`] with `n × n` rays.
+    ///
+    /// # Errors
+    ///
+    /// [`SamplingError::SubSamples`] unless `n` is 2, 3 or 4.
+    pub const fn grid(n: u32) -> Result<Self, SamplingError> {
+        match SubSamples::new(n) {
+            Ok(n) => Ok(Sampling::Grid(n)),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// [`Sampling::Adaptive`] with `n × n` rays in edge pixels.
+    ///
+    /// # Errors
+    ///
+    /// [`SamplingError::SubSamples`] unless `n` is 2, 3 or 4.
+    pub const fn adaptive(n: u32) -> Result<Self, SamplingError> {
+        match SubSamples::new(n) {
+            Ok(n) => Ok(Sampling::Adaptive(n)),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// Every choice the renderer offers, for tests and tables.
+    pub const ALL: [Sampling; 7] = [
+        Sampling::Center,
+        Sampling::Grid(SubSamples(2)),
+        Sampling::Grid(SubSamples(3)),
+        Sampling::Grid(SubSamples(4)),
+        Sampling::Adaptive(SubSamples(2)),
+        Sampling::Adaptive(SubSamples(3)),
+        Sampling::Adaptive(SubSamples(4)),
+    ];
+}
+
+/// Why a sampling choice was refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SamplingError {
+    /// The grid is `n × n` with `n` = 2…4; this `n` is outside.
+    SubSamples(u32),
+    /// Not `center`, `grid:N` or `adaptive:N`.
+    Syntax,
+}
+
+impl fmt::Display for SamplingError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SamplingError::SubSamples(n) => write!(f, "sub-samples per axis must be 2, 3 or 4, not {n}"),
+            SamplingError::Syntax => f.write_str("expected center, grid:N or adaptive:N (N = 2, 3, 4)"),
+        }
+    }
+}
+
+impl core::error::Error for SamplingError {}
+
+impl fmt::Display for Sampling {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Sampling::Center => f.write_str("center"),
+            Sampling::Grid(n) => write!(f, "grid:{}", n.get()),
+            Sampling::Adaptive(n) => write!(f, "adaptive:{}", n.get()),
+        }
+    }
+}
+
+impl FromStr for Sampling {
+    type Err = SamplingError;
+
+    /// `center`, `grid:N` or `adaptive:N`, as [`Display`](fmt::Display) writes them.
+    fn from_str(s: &str) -> Result<Self, SamplingError> {
+        if s == "center" {
+            return Ok(Sampling::Center);
+        }
+        let (kind, n) = s.split_once(':').ok_or(SamplingError::Syntax)?;
+        let n: u32 = n.parse().map_err(|_| SamplingError::Syntax)?;
+        match kind {
+            "grid" => Sampling::grid(n),
+            "adaptive" => Sampling::adaptive(n),
+            _ => Err(SamplingError::Syntax),
+        }
+    }
+}
+
+/// The widest image `Adaptive` keeps its two rows of shared samples for; a wider
+/// image's pixels are all edge pixels (`Grid(n)`'s).
+pub const ADAPTIVE_MAX_WIDTH: usize = 256;
+
+/// Silhouettes whose semi-minor axis (lower bound, pixels) is under this may hold no
+/// pixel centre: all their pixels are edge pixels. An ellipse with a semi-minor axis of
+/// `√2/2` or more holds a pixel centre; 2 leaves room for the culling ellipse's
+/// enlargement.
+pub const SMALL: f32 = 2.0;
+
+/// Neighbouring centre colours further apart than this (levels, any channel) make
+/// both pixels edge pixels: where shading changes this fast (a sphere's rim, a
+/// highlight) the pixel's mean is not its centre's colour.
+pub const CONTRAST: u8 = 16;
+
+/// A ray's identity accumulated along its path (see [`RowTracer::identified`]).
+pub(crate) trait Ident {
+    /// Whether this identity is kept (an identity that is not computes nothing).
+    const KEPT: bool;
+    fn mix(&mut self, x: u32);
+    /// The ray sees detail finer than the pixel spacing (checker cells): its pixel is
+    /// an edge pixel whatever its neighbours see.
+    fn fine(&mut self);
+}
+
+/// FNV-1a-style mixing of 32-bit words, from 0 (the identity of a ray that hits
+/// nothing: every word mixed in is non-zero, and an odd multiplier keeps it so), and
+/// whether the ray saw detail finer than a pixel.
+pub(crate) struct Fnv(pub u32, pub bool);
+
+/// The identity of a ray that saw detail finer than a pixel: its pixel is an edge
+/// pixel (a hash that happens to equal it only adds one).
+pub(crate) const FINE: u32 = u32::MAX;
+
+impl Fnv {
+    /// The identity as [`RowTracer::identified`] reports it.
+    pub(crate) fn get(&self) -> u32 {
+        if self.1 {
+            FINE
+        } else {
+            self.0
+        }
+    }
+}
+
+impl Ident for Fnv {
+    const KEPT: bool = true;
+    #[inline(always)]
+    fn mix(&mut self, x: u32) {
+        self.0 = (self.0 ^ x).wrapping_mul(0x0100_0193);
+    }
+    #[inline(always)]
+    fn fine(&mut self) {
+        self.1 = true;
+    }
+}
+
+/// How a frame's rows are traced: the sampling's strategy type.
+pub(crate) trait Rows: Copy {
+    /// The one-ray row loop (the only one the integer kernel has).
+    const CENTER: bool;
+    /// The part of the image the frame must trace for `clip` (adaptive sampling
+    /// needs the ring of pixels around it).
+    fn clip(&self, clip: Rectangle) -> Rectangle;
+    /// Trace the frame's rows into `sink`; `tracer` as for [`scanline::draw_rows`].
+    fn draw_rows<'s, const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X>(
+        self,
+        frame: &Frame<'s, T, Sh>,
+        sink: &mut K,
+        tracer: impl FnMut(u32, &mut u32, &mut u32) -> X,
+    ) -> Result<(), K::Error>
+    where
+        X: RowTracer<'s, T, Sh>;
+}
+
+/// [`Sampling::Center`]: the scanline loop as it is.
+#[derive(Clone, Copy)]
+pub(crate) struct CenterRows;
+
+impl Rows for CenterRows {
+    const CENTER: bool = true;
+    #[inline(always)]
+    fn clip(&self, clip: Rectangle) -> Rectangle {
+        clip
+    }
+
+    #[inline(always)]
+    fn draw_rows<'s, const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X>(
+        self,
+        frame: &Frame<'s, T, Sh>,
+        sink: &mut K,
+        tracer: impl FnMut(u32, &mut u32, &mut u32) -> X,
+    ) -> Result<(), K::Error>
+    where
+        X: RowTracer<'s, T, Sh>,
+    {
+        scanline::draw_rows::<N, K, S, T, Q, Sh, X>(frame, sink, tracer)
+    }
+}
+
+/// [`Sampling::Grid`]`(n)`: every pixel averaged.
+#[derive(Clone, Copy)]
+pub(crate) struct GridRows(pub u32);
+
+impl Rows for GridRows {
+    const CENTER: bool = false;
+    #[inline(always)]
+    fn clip(&self, clip: Rectangle) -> Rectangle {
+        clip
+    }
+
+    // Out of line: the one-ray path's callers do not carry its frame (the adaptive
+    // rows' buffers) on their stack.
+    #[inline(never)]
+    fn draw_rows<'s, const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X>(
+        self,
+        frame: &Frame<'s, T, Sh>,
+        sink: &mut K,
+        mut tracer: impl FnMut(u32, &mut u32, &mut u32) -> X,
+    ) -> Result<(), K::Error>
+    where
+        X: RowTracer<'s, T, Sh>,
+    {
+        let steps = SubSteps::new(frame, self.0);
+        for j in frame.j0..frame.j1 {
+            let (mut lo, mut hi) = (frame.i1, frame.i0);
+            let mut tracer = tracer(j, &mut lo, &mut hi);
+            let row = SampledRow::<T, Q, Sh, X> {
+                spheres: frame.spheres,
+                tracer: &mut tracer,
+                steps: &steps,
+                stored: None,
+                i: frame.i0,
+                end: frame.i1,
+                j,
+                background: frame.background,
+                sqrt: core::marker::PhantomData,
+            };
+            sink.row(row_area(frame, frame.i0, frame.i1, j), row)?;
+        }
+        Ok(())
+    }
+}
+
+/// [`Sampling::Adaptive`]`(n)`; `clip` is the render's own (the frame traces the ring
+/// around it).
+#[derive(Clone, Copy)]
+pub(crate) struct AdaptiveRows {
+    pub n: u32,
+    pub clip: Rectangle,
+}
+
+/// One row of adaptive sampling's shared samples.
+struct RowBuf {
+    colors: [Rgb888; ADAPTIVE_MAX_WIDTH],
+    ids: [u16; ADAPTIVE_MAX_WIDTH],
+    edges: [u32; ADAPTIVE_MAX_WIDTH / 32],
+}
+
+impl RowBuf {
+    const EMPTY: RowBuf = RowBuf {
+        colors: [Rgb888::BLACK; ADAPTIVE_MAX_WIDTH],
+        ids: [0; ADAPTIVE_MAX_WIDTH],
+        edges: [0; ADAPTIVE_MAX_WIDTH / 32],
+    };
+
+    #[inline(always)]
+    fn mark(&mut self, k: usize) {
+        if let Some(w) = self.edges.get_mut(k / 32) {
+            *w |= 1 << (k % 32);
+        }
+    }
+}
+
+/// Whether pixels `k` of `a` and `m` of `b` (both in range) disagree: on their
+/// identity, or on a colour channel by more than [`CONTRAST`] levels.
+#[inline(always)]
+fn differ(a: &RowBuf, k: usize, b: &RowBuf, m: usize) -> bool {
+    match ((a.ids.get(k), a.colors.get(k)), (b.ids.get(m), b.colors.get(m))) {
+        ((Some(x), Some(p)), (Some(y), Some(q))) => {
+            x != y
+                || p.r().abs_diff(q.r()) > CONTRAST
+                || p.g().abs_diff(q.g()) > CONTRAST
+                || p.b().abs_diff(q.b()) > CONTRAST
+        }
+        _ => false,
+    }
+}
+
+impl Rows for AdaptiveRows {
+    const CENTER: bool = false;
+    #[inline(always)]
+    fn clip(&self, clip: Rectangle) -> Rectangle {
+        // One pixel more on every side: the neighbours' shared samples.
+        Rectangle::new(
+            clip.top_left - Point::new(1, 1),
+            Size::new(
+                clip.size.width.saturating_add(2),
+                clip.size.height.saturating_add(2),
+            ),
+        )
+    }
+
+    // Out of line: the one-ray path's callers do not carry its frame (the adaptive
+    // rows' buffers) on their stack.
+    #[inline(never)]
+    fn draw_rows<'s, const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X>(
+        self,
+        frame: &Frame<'s, T, Sh>,
+        sink: &mut K,
+        mut tracer: impl FnMut(u32, &mut u32, &mut u32) -> X,
+    ) -> Result<(), K::Error>
+    where
+        X: RowTracer<'s, T, Sh>,
+    {
+        // The render's own columns and rows inside the traced (ringed) ones.
+        let inside = |lo: u32, hi: u32, offset: i32, clip_at: i32, clip_len: u32| {
+            let c0 = i64::from(clip_at) - i64::from(offset);
+            let c1 = c0 + i64::from(clip_len);
+            let a = i64::from(lo).max(c0);
+            let b = i64::from(hi).min(c1);
+            (a < b).then_some((a as u32, b as u32))
+        };
+        let c = self.clip;
+        let Some((ri0, ri1)) = inside(frame.i0, frame.i1, frame.offset.x, c.top_left.x, c.size.width) else {
+            return Ok(());
+        };
+        let Some((rj0, rj1)) = inside(frame.j0, frame.j1, frame.offset.y, c.top_left.y, c.size.height) else {
+            return Ok(());
+        };
+        let steps = SubSteps::new(frame, self.n);
+        let width = (frame.i1 - frame.i0) as usize;
+        let small = small_silhouettes::<N, T, Sh>(frame);
+        let mut stepper = S::new(frame.camera);
+        let mut active: Vec<_, N> = Vec::new();
+        let (mut buf_a, mut buf_b) = (RowBuf::EMPTY, RowBuf::EMPTY);
+        let (mut cur, mut prev) = (&mut buf_a, &mut buf_b);
+        let wide = width > ADAPTIVE_MAX_WIDTH;
+        for j in frame.j0..frame.j1 {
+            let row_step = stepper.start_row(j, frame.i0);
+            let (mut lo, mut hi) = scanline::activate(frame, &mut stepper, j, &mut active);
+            let tracer = tracer(j, &mut lo, &mut hi);
+            let mut row = RowPixels::<S, T, Q, Sh, X>::new(frame, row_step, &mut active, (lo, hi), tracer, j);
+            if !wide {
+                // The centre rays, once: colours and identities.
+                cur.edges = [0; ADAPTIVE_MAX_WIDTH / 32];
+                for k in 0..width {
+                    let (h, c) = row.next_identified();
+                    if h == FINE {
+                        cur.mark(k);
+                    }
+                    if let (Some(color), Some(id)) = (cur.colors.get_mut(k), cur.ids.get_mut(k)) {
+                        *color = c;
+                        *id = (h ^ (h >> 16)) as u16;
+                    }
+                }
+                // Compare with the left neighbour and the three above; mark both sides.
+                for k in 0..width {
+                    if k > 0 && differ(cur, k, cur, k - 1) {
+                        cur.mark(k);
+                        cur.mark(k - 1);
+                    }
+                    if j > frame.j0 {
+                        for m in [k.wrapping_sub(1), k, k + 1] {
+                            if differ(cur, k, prev, m) {
+                                cur.mark(k);
+                                prev.mark(m);
+                            }
+                        }
+                    }
+                }
+            }
+            // Row j − 1 has all its neighbours now; the last row has no row below.
+            let mut emit = |buf: &mut RowBuf, r: u32, tracer: &mut X| {
+                if !(rj0..rj1).contains(&r) {
+                    return Ok(());
+                }
+                mark_small(buf, &small, frame.i0, r);
+                let row = SampledRow::<T, Q, Sh, X> {
+                    spheres: frame.spheres,
+                    tracer,
+                    steps: &steps,
+                    stored: (!wide).then_some((buf.colors.as_slice(), buf.edges.as_slice(), frame.i0)),
+                    i: ri0,
+                    end: ri1,
+                    j: r,
+                    background: frame.background,
+                    sqrt: core::marker::PhantomData,
+                };
+                sink.row(row_area(frame, ri0, ri1, r), row)
+            };
+            if j > frame.j0 {
+                emit(prev, j - 1, row.tracer_mut())?;
+            }
+            if j + 1 == frame.j1 {
+                emit(cur, j, row.tracer_mut())?;
+            }
+            drop(row);
+            core::mem::swap(&mut cur, &mut prev);
+        }
+        Ok(())
+    }
+}
+
+/// Where row `j`, columns `i0..i1` of the image, go on the target.
+fn row_area<T: TestStrategy, Sh: Shader>(frame: &Frame<'_, T, Sh>, i0: u32, i1: u32, j: u32) -> Rectangle {
+    // Visible rows and columns fit in the target's i32 coordinates.
+    Rectangle::new(
+        Point::new(
+            frame.offset.x.wrapping_add(i0 as i32),
+            frame.offset.y.wrapping_add(j as i32),
+        ),
+        Size::new(i1 - i0, 1),
+    )
+}
+
+/// Bounding boxes (widened by one pixel) of the silhouettes that may hold no pixel
+/// centre (semi-minor axis under [`SMALL`]).
+fn small_silhouettes<const N: usize, T: TestStrategy, Sh: Shader>(
+    frame: &Frame<'_, T, Sh>,
+) -> Vec<[f32; 4], N> {
+    let mut small = Vec::new();
+    for fs in frame.spheres {
+        // The culling ellipse contains every pixel a centre ray can hit the sphere in;
+        // without culling (`All`) the tight one (the robust test's margin) stands in.
+        let tight = || {
+            crate::span::Silhouette::new(
+                fs.geom.l,
+                crate::math::sqrt_exact(fs.geom.r2),
+                frame.camera,
+                crate::span::Margin::Linear,
+                0.0,
+            )
+            .bounds()
+        };
+        if let Some((b, semi_minor)) = fs.silhouette.bounds().or_else(tight) {
+            if !(semi_minor >= SMALL) {
+                let _ = small.push([b[0] - 1.0, b[1] + 1.0, b[2] - 1.0, b[3] + 1.0]);
+            }
+        }
+    }
+    small
+}
+
+/// Marks row `r`'s pixels (columns from `i0`) whose footprint meets a small box.
+fn mark_small(buf: &mut RowBuf, small: &[[f32; 4]], i0: u32, r: u32) {
+    let y = r as f32;
+    for b in small {
+        if y + 0.5 < b[2] || y - 0.5 > b[3] {
+            continue;
+        }
+        // Columns i with [i − ½, i + ½] meeting [x0, x1], as offsets from i0 (clamped
+        // by comparisons: NaN marks nothing, ±∞ the row).
+        let lo = libm::ceilf(b[0] - 0.5) - i0 as f32;
+        let hi = libm::floorf(b[1] + 0.5) - i0 as f32;
+        let last = ADAPTIVE_MAX_WIDTH as f32 - 1.0;
+        let lo = if lo > 0.0 { lo.min(last + 1.0) as usize } else { 0 };
+        let hi = if hi < last { hi.max(-1.0) } else { last };
+        if hi < 0.0 {
+            continue;
+        }
+        for k in lo..=hi as usize {
+            buf.mark(k);
+        }
+    }
+}
+
+/// The camera's steps and the sub-pixel offsets of an `n × n` grid.
+struct SubSteps {
+    first: Vec3,
+    du: Vec3,
+    dv: Vec3,
+    offsets: [f32; 4],
+    n: usize,
+}
+
+impl SubSteps {
+    fn new<T: TestStrategy, Sh: Shader>(frame: &Frame<'_, T, Sh>, n: u32) -> Self {
+        let mut offsets = [0.0; 4];
+        for (a, o) in offsets.iter_mut().enumerate().take(n as usize) {
+            // (a + ½)/n − ½ = (2a + 1 − n)/(2n): one rounding (none for n = 2, 4).
+            *o = (2.0 * a as f32 + 1.0 - n as f32) / (2.0 * n as f32);
+        }
+        let c = frame.camera;
+        Self {
+            first: c.first_direction(),
+            du: c.pixel_step(),
+            dv: c.scanline_step(),
+            offsets,
+            n: n as usize,
+        }
+    }
+
+    /// The centre ray's direction formed the same way (for [`Sample::direction`]).
+    fn center(&self, i: u32, j: u32) -> Vec3 {
+        (self.first + self.dv * j as f32) + self.du * i as f32
+    }
+}
+
+/// Pixel `(i, j)` with `Grid(n)`'s rays: each traced against every sphere with the
+/// method's single-ray test, coloured by the row's tracer, averaged in linear light.
+#[inline(never)]
+fn average<'s, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>>(
+    spheres: &'s [FrameSphere<T, Sh>],
+    tracer: &mut X,
+    st: &SubSteps,
+    i: u32,
+    j: u32,
+) -> Rgb888 {
+    let mut sum = [0u32; 3];
+    for oy in st.offsets.iter().take(st.n) {
+        let base = st.first + st.dv * (j as f32 + oy);
+        for ox in st.offsets.iter().take(st.n) {
+            let d = base + st.du * (i as f32 + ox);
+            let a = d.dot(d);
+            let mut best = None;
+            let mut t_max = f32::INFINITY;
+            for (index, s) in spheres.iter().enumerate() {
+                if let Some(t) = T::ray::<Q>(&s.geom, d, a, t_max) {
+                    t_max = t;
+                    best = Some((index, t, s));
+                }
+            }
+            let (_, c) = tracer.sub_sample(best, d);
+            for (acc, v) in sum.iter_mut().zip([c.r(), c.g(), c.b()]) {
+                *acc += decode(v);
+            }
+        }
+    }
+    let count = (st.n * st.n) as u32;
+    Rgb888::new(
+        encode(sum[0], count),
+        encode(sum[1], count),
+        encode(sum[2], count),
+    )
+}
+
+/// An 8-bit sRGB level in linear light, `round(65535·L)`.
+#[inline(always)]
+fn decode(v: u8) -> u32 {
+    u32::from(SRGB_TO_LINEAR.get(usize::from(v)).copied().unwrap_or(0))
+}
+
+/// The level nearest (in the encoded scale) to the mean of `count` (≤ 16) decoded
+/// values summing to `sum`: the number of thresholds at or below the mean.
+#[inline(always)]
+fn encode(sum: u32, count: u32) -> u8 {
+    let scaled = sum * 16;
+    LINEAR_THRESHOLDS.partition_point(|&t| t * count <= scaled) as u8
+}
+
+/// One row of `Grid`/`Adaptive` pixels, computed as the sink pulls them. `stored`:
+/// adaptive sampling's centre colours and edge bits (indexed from its column); `None`:
+/// every pixel is averaged.
+struct SampledRow<'a, 's, T: TestStrategy, Q, Sh: Shader, X> {
+    spheres: &'s [FrameSphere<T, Sh>],
+    tracer: &'a mut X,
+    steps: &'a SubSteps,
+    stored: Option<(&'a [Rgb888], &'a [u32], u32)>,
+    i: u32,
+    end: u32,
+    j: u32,
+    background: Rgb888,
+    sqrt: core::marker::PhantomData<Q>,
+}
+
+impl<'s, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>> SampledRow<'_, 's, T, Q, Sh, X> {
+    /// Pixel `i`'s colour and the rays averaged into it.
+    #[inline(always)]
+    fn color(&mut self, i: u32) -> (Rgb888, u32) {
+        if let Some((colors, edges, base)) = self.stored {
+            let k = (i - base) as usize;
+            let edge = edges.get(k / 32).is_some_and(|w| w & (1 << (k % 32)) != 0);
+            if !edge {
+                return (colors.get(k).copied().unwrap_or(self.background), 1);
+            }
+        }
+        let rays = (self.steps.n * self.steps.n) as u32;
+        (
+            average::<T, Q, Sh, X>(self.spheres, self.tracer, self.steps, i, self.j),
+            rays,
+        )
+    }
+
+    /// The next pixel: column, colour, rays.
+    #[inline(always)]
+    fn next_pixel(&mut self) -> Option<(u32, Rgb888, u32)> {
+        let i = self.i;
+        if i >= self.end {
+            return None;
+        }
+        self.i += 1;
+        let (c, rays) = self.color(i);
+        Some((i, c, rays))
+    }
+}
+
+impl<'s, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>> Iterator
+    for SampledRow<'_, 's, T, Q, Sh, X>
+{
+    type Item = Rgb888;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<Rgb888> {
+        self.next_pixel().map(|(_, c, _)| c)
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let n = (self.end - self.i) as usize;
+        (n, Some(n))
+    }
+}
+
+impl<'s, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>> PixelRow
+    for SampledRow<'_, 's, T, Q, Sh, X>
+{
+    /// Every pixel as a [`Sample`]: its colour and rays, the centre direction (formed
+    /// directly from the camera's steps) and no hit (not kept for the centre rays of
+    /// adaptive sampling; several rays have no single one).
+    fn samples(mut self) -> impl Iterator<Item = Sample> {
+        let (j, steps) = (self.j, self.steps);
+        core::iter::from_fn(move || {
+            self.next_pixel().map(|(i, color, rays)| Sample {
+                pixel: Point::new(i as i32, j as i32),
+                direction: steps.center(i, j),
+                hit: None,
+                color,
+                rays,
+            })
+        })
+    }
+
+    fn color_runs(self) -> ColorRuns<impl Iterator<Item = Rgb888>> {
+        ColorRuns {
+            background: self.background,
+            before: 0,
+            traced_len: self.end - self.i,
+            traced: self,
+            after: 0,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{decode, encode};
+    use std::println;
+
+    fn srgb_to_linear(c: f64) -> f64 {
+        if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    }
+
+    fn linear_to_srgb(l: f64) -> f64 {
+        if l <= 0.003_130_8 {
+            l * 12.92
+        } else {
+            1.055 * l.powf(1.0 / 2.4) - 0.055
+        }
+    }
+
+    /// A constant colour averages to itself, for every level and count.
+    #[test]
+    fn constant_round_trips() {
+        for n in [4u32, 9, 16] {
+            for v in 0..=255u8 {
+                assert_eq!(encode(decode(v) * n, n), v, "level {v}, {n} samples");
+            }
+        }
+    }
+
+    /// The table average of 8-bit-rounded samples against the exact linear-light
+    /// average of the unrounded ones, encoded and rounded in f64: at most one level.
+    #[test]
+    fn rounded_samples_within_one_level() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut worst, mut off) = (0.0f64, 0usize);
+        let trials = 200_000;
+        for t in 0..trials {
+            let n = [4usize, 9, 16][t % 3];
+            // Two-tone samples (an edge) and spread ones, over the whole range.
+            let (a, b) = (next() * 255.0, next() * 255.0);
+            let unrounded: std::vec::Vec<f64> = (0..n)
+                .map(|_| {
+                    if t % 2 == 0 {
+                        if next() < 0.5 {
+                            a
+                        } else {
+                            b
+                        }
+                    } else {
+                        next() * 255.0
+                    }
+                })
+                .collect();
+            let exact_lin = unrounded.iter().map(|&x| srgb_to_linear(x / 255.0)).sum::<f64>() / n as f64;
+            let exact = linear_to_srgb(exact_lin) * 255.0;
+            let sum: u32 = unrounded.iter().map(|&x| decode(x.round() as u8)).sum();
+            let got = f64::from(encode(sum, n as u32));
+            let diff = (got - exact).abs();
+            worst = worst.max(diff);
+            if (got - exact.round()).abs() > 0.0 {
+                off += 1;
+            }
+            assert!(diff <= 1.0, "{unrounded:?}: {got} vs {exact}");
+        }
+        // Not vacuous: rounding the samples first does change some results.
+        assert!(off > 0);
+        println!(
+            "table average of rounded samples vs exact average of unrounded: max {worst:.3} levels, \
+             {off} of {trials} results differ from the exact one rounded"
+        );
+    }
+
+    /// Exactly on a threshold's neighbourhood the encoding rounds to nearest: a mean
+    /// just below `k + ½` (encoded) gives k, just above gives k + 1.
+    #[test]
+    fn encoding_rounds_to_nearest() {
+        let mut checked = 0;
+        for k in 0..255u32 {
+            let mid = srgb_to_linear((f64::from(k) + 0.5) / 255.0) * 65535.0;
+            // 16 samples summing to just below / above 16·mid (one unit of slack on
+            // the table's integer rounding).
+            let below = (mid * 16.0 - 2.0).floor() as u32;
+            let above = (mid * 16.0 + 2.0).ceil() as u32;
+            assert_eq!(u32::from(encode(below, 16)), k, "below k + ½, k = {k}");
+            assert_eq!(u32::from(encode(above, 16)), k + 1, "above k + ½, k = {k}");
+            checked += 1;
+        }
+        assert_eq!(checked, 255);
+    }
+}

@@ -354,12 +354,14 @@ where
 
 impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'_, N, C, L, P, D> {
     /// The arithmetic a whole-image frame of this render uses: the integer kernel where
-    /// the method asks for it and its per-frame rule admits the scene and camera
-    /// (see [`Arithmetic::Integer`]), `F32` otherwise.
+    /// the method asks for it, the sampling is [`Sampling::Center`] (sub-pixel rays are
+    /// traced in `f32`) and its per-frame rule admits the scene and camera (see
+    /// [`Arithmetic::Integer`]), `F32` otherwise.
     #[must_use]
     pub fn arithmetic(&self) -> Arithmetic {
         let full = Rectangle::new(Point::zero(), self.camera.size());
         let integer = self.method.arithmetic == Arithmetic::Integer
+            && self.sampling == Sampling::Center
             && !Scene::<N, L, P, D>::FEATURES
             && fixed::IntFrame::new(
                 heapless::Vec::<_, N>::new().as_mut_view(),

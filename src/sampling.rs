@@ -432,7 +432,9 @@ impl Rows for AdaptiveRows {
         let mut active: Vec<_, N> = Vec::new();
         let (mut buf_a, mut buf_b) = (RowBuf::EMPTY, RowBuf::EMPTY);
         let (mut cur, mut prev) = (&mut buf_a, &mut buf_b);
-        let wide = width > ADAPTIVE_MAX_WIDTH;
+        // From the image's width, not the traced one: a clip must not switch an image
+        // between the adaptive rule and the grid.
+        let wide = frame.camera.size().width as usize > ADAPTIVE_MAX_WIDTH;
         for j in frame.j0..frame.j1 {
             let row_step = stepper.start_row(j, frame.i0);
             let (mut lo, mut hi) = scanline::activate(frame, &mut stepper, j, &mut active);
@@ -458,8 +460,10 @@ impl Rows for AdaptiveRows {
                         cur.mark(k - 1);
                     }
                     if j > frame.j0 {
+                        // Only columns that exist: past the row's end the buffer holds
+                        // no pixel.
                         for m in [k.wrapping_sub(1), k, k + 1] {
-                            if differ(cur, k, prev, m) {
+                            if m < width && differ(cur, k, prev, m) {
                                 cur.mark(k);
                                 prev.mark(m);
                             }
@@ -518,19 +522,22 @@ fn small_silhouettes<const N: usize, T: TestStrategy, Sh: Shader>(
 ) -> Vec<[f32; 4], N> {
     let mut small = Vec::new();
     for fs in frame.spheres {
-        // The culling ellipse contains every pixel a centre ray can hit the sphere in;
-        // without culling (`All`) the tight one (the robust test's margin) stands in.
-        let tight = || {
-            crate::span::Silhouette::new(
-                fs.geom.l,
-                crate::math::sqrt_exact(fs.geom.r2),
-                frame.camera,
-                crate::span::Margin::Linear,
-                0.0,
-            )
-            .bounds()
-        };
-        if let Some((b, semi_minor)) = fs.silhouette.bounds().or_else(tight) {
+        // The sphere's size from its tight silhouette (the robust test's margin, no
+        // stepping error: the culling margins of the quadratic tests or of a far eye's
+        // stepping could make a sub-pixel sphere look large); the box from the culling
+        // ellipse, which contains every pixel a centre ray can hit it in (without
+        // culling, `All`, the tight one stands in).
+        let tight = crate::span::Silhouette::new(
+            fs.geom.l,
+            crate::math::sqrt_exact(fs.geom.r2),
+            frame.camera,
+            crate::span::Margin::Linear,
+            0.0,
+        )
+        .bounds();
+        let culled = fs.silhouette.bounds().or(tight);
+        let size = tight.or(culled).map(|(_, semi_minor)| semi_minor);
+        if let (Some((b, _)), Some(semi_minor)) = (culled, size) {
             if !(semi_minor >= SMALL) {
                 let _ = small.push([b[0] - 1.0, b[1] + 1.0, b[2] - 1.0, b[3] + 1.0]);
             }

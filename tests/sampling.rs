@@ -11,6 +11,7 @@ use embedded_graphics::pixelcolor::{BinaryColor, Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_raytracer::dither::{dither, Bayer, DitherExt};
+use embedded_raytracer::sampling::ADAPTIVE_MAX_WIDTH;
 use embedded_raytracer::{Camera, Method, Render, Sampling, SamplingError, Scene, Sphere, Vec3};
 
 /// The camera of a scene file at another size.
@@ -287,7 +288,10 @@ fn adaptive_is_within_two_levels_of_the_grid_on_the_standard_scenes() {
             adaptive.push(s.color);
             centre_rays += usize::from(s.rays == 1);
         });
-        assert!(centre_rays > grid.len() / 10, "{name}: {centre_rays} centre-ray pixels");
+        assert!(
+            centre_rays > grid.len() / 10,
+            "{name}: {centre_rays} centre-ray pixels"
+        );
         let diff = |a: Rgb888, b: Rgb888| {
             [(a.r(), b.r()), (a.g(), b.g()), (a.b(), b.b())]
                 .iter()
@@ -399,6 +403,39 @@ fn firmware_anti_aliasing_hashes_equal_the_hosts() {
                 checked.contains(&(scene.to_string(), s)),
                 "no QEMU line for {scene} {s}"
             );
+        }
+    }
+}
+
+/// Near and past the adaptive row buffer's width: an image as wide as the buffer and
+/// one wider, drawn whole, into a narrower display (the clip cuts its right part) and
+/// with a clip reaching the image's right edge, give the same pixels — the rule
+/// (adaptive or grid) follows the image's width, not the traced one, and the last
+/// column is compared with no pixel beyond it.
+#[test]
+fn wide_images_draw_the_same_pixels_whatever_the_clip() {
+    let file = common::load("lab");
+    let sampling = Sampling::adaptive(2).unwrap();
+    for width in [ADAPTIVE_MAX_WIDTH as u32, ADAPTIVE_MAX_WIDTH as u32 + 44] {
+        let size = Size::new(width, width * 3 / 4);
+        let camera = resized(&file.camera, size);
+        let render = Render::new(&file.scene, &camera).with_sampling(sampling);
+        let whole = colors(render);
+        let w = width as i32;
+        let clips = [
+            Rectangle::new(Point::zero(), Size::new(200, size.height)),
+            Rectangle::new(Point::new(100, 10), Size::new(width - 100, 40)),
+        ];
+        for clip in clips {
+            let mut frame = Frame::new(size);
+            render.draw(&mut frame.clipped(&clip)).unwrap();
+            for p in clip.points() {
+                assert_eq!(
+                    frame.get(p),
+                    Some(whole[(p.y * w + p.x) as usize]),
+                    "{width} wide, clip {clip:?}: {p:?}"
+                );
+            }
         }
     }
 }

@@ -389,8 +389,13 @@ impl Rows for AdaptiveRows {
     #[inline(always)]
     fn clip(&self, clip: Rectangle) -> Rectangle {
         // One pixel more on every side: the neighbours' shared samples.
+        // Saturating: a clip at the coordinates' edge keeps a ring on its other sides
+        // (an extra traced column or row is harmless, only the clip is drawn).
         Rectangle::new(
-            clip.top_left - Point::new(1, 1),
+            Point::new(
+                clip.top_left.x.saturating_sub(1),
+                clip.top_left.y.saturating_sub(1),
+            ),
             Size::new(
                 clip.size.width.saturating_add(2),
                 clip.size.height.saturating_add(2),
@@ -554,7 +559,7 @@ fn mark_small(buf: &mut RowBuf, small: &[[f32; 4]], i0: u32, r: u32) {
             continue;
         }
         // Columns i with [i − ½, i + ½] meeting [x0, x1], as offsets from i0 (clamped
-        // by comparisons: NaN marks nothing, ±∞ the row).
+        // by comparisons: a NaN bound marks the whole row, more rays but none missed).
         let lo = libm::ceilf(b[0] - 0.5) - i0 as f32;
         let hi = libm::floorf(b[1] + 0.5) - i0 as f32;
         let last = ADAPTIVE_MAX_WIDTH as f32 - 1.0;

@@ -1,7 +1,7 @@
 //! The anti-aliasing reference: every pixel the box-filtered mean of `n × n` rays
 //! (16 × 16 for the README's table) in linear light, in `f64`, with this module's own
 //! sRGB transfer functions (IEC 61966-2-1, `powf`). Each ray is the `f64` reference's
-//! ([`trace_ray`](super::trace_ray) for Lab #1 scenes, [`lit::trace`](super::lit::trace)
+//! ([`trace_ray`] for Lab #1 scenes, [`lit::trace`]
 //! otherwise), whose colour is rounded to 8 bits once; the mean is not rounded.
 
 use std::vec;

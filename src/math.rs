@@ -153,6 +153,8 @@ fn cos_poly(x: f32) -> f32 {
 /// A square-root back end chosen once per frame; the render loop is monomorphised
 /// over it so the per-pixel code has no branch on the method.
 pub(crate) trait SqrtFn {
+    /// Correctly rounded: hits and their order are the exact ones' up to rounding.
+    const EXACT: bool;
     fn sqrt(x: f32) -> f32;
 }
 
@@ -162,6 +164,7 @@ pub(crate) struct ExactSqrt;
 pub(crate) struct FastSqrt;
 
 impl SqrtFn for ExactSqrt {
+    const EXACT: bool = true;
     #[inline(always)]
     fn sqrt(x: f32) -> f32 {
         sqrt_exact(x)
@@ -169,6 +172,7 @@ impl SqrtFn for ExactSqrt {
 }
 
 impl SqrtFn for FastSqrt {
+    const EXACT: bool = false;
     #[inline(always)]
     fn sqrt(x: f32) -> f32 {
         sqrt_fast(x)

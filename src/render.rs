@@ -23,7 +23,7 @@ use crate::intersect::{TestStrategy, FD_ANCHOR_INTERVAL};
 use crate::lit::{self, SecondaryOrigin};
 use crate::math::SqrtFn;
 use crate::method::{Arithmetic, Method};
-use crate::sampling::{AdaptiveRows, CenterRows, GridRows, Rows, Sampling};
+use crate::sampling::{AdaptiveRows, CenterRows, GridRows, Rows, Sampling, SpanAdaptiveRows};
 use crate::scene::{Hit, Scene};
 use crate::sink::{BandSink, DrawSink, RowSink, TraceSink};
 use crate::stepping::Stepper;
@@ -423,6 +423,12 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
         match self.sampling {
             Sampling::Center => self.with_rows::<S, T, Q, _>(CenterRows),
             Sampling::Grid(n) => self.with_rows::<S, T, Q, _>(GridRows(n.get())),
+            // A Lab #1 scene's colours jump only at silhouettes: its edge pixels come
+            // from them; a scene with features shares samples between neighbours.
+            Sampling::Adaptive(n) if !Scene::<N, L, P, D>::FEATURES => {
+                let clip = self.clip;
+                self.with_rows::<S, T, Q, _>(SpanAdaptiveRows { n: n.get(), clip })
+            }
             Sampling::Adaptive(n) => {
                 let clip = self.clip;
                 self.with_rows::<S, T, Q, _>(AdaptiveRows { n: n.get(), clip })

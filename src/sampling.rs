@@ -27,7 +27,26 @@
 //! forward-differenced test's row state belongs to the centre rays), tested against
 //! every sphere and plane (a row's spans hold for its centre line only).
 //!
-//! **Edge pixels** (`Adaptive`), conservatively:
+//! **Edge pixels** (`Adaptive`) of a Lab #1 scene (spheres only), from the silhouettes
+//! alone, per row ([`SpanAdaptiveRows`]): once per frame each sphere gets two ellipses,
+//! its silhouette enlarged and shrunk by the test's rounding margin and the larger of
+//! the stepping's and the sub-pixel rays' direction errors (`span.rs`); once per row,
+//! the columns whose sub-sample square `[i ± h] × [j ± h]`, `h = (n − 1)/(2n)`, reaches
+//! the enlarged one but is not inside the shrunk one are its edge columns. So every
+//! pixel whose samples may see two different things (a sphere and the background, or
+//! two spheres: between spheres that do not touch the one in front never changes) is
+//! an edge pixel, however small the sphere; `tests/sampling.rs` checks it sample by
+//! sample. Edge columns hidden by a sphere in front that all the samples hit are
+//! dropped. A second ring per sphere marks pixels where the centre's Lab #1 shade is
+//! not a fair stand-in for the mean (the `0.3` floor's kink, and steep shading on small
+//! spheres; [`SHADE_TOLERANCE`]) — a heuristic the quality tables measure. A frame the
+//! silhouettes cannot decide — a sphere not seen as a bounded ellipse, two spheres
+//! closer than a small gap, a fast square root — uses the shared samples below. This
+//! path keeps no row buffer: its cost is the centre row plus a few interval
+//! comparisons per row, and it has no width limit.
+//!
+//! **Edge pixels** of a scene with lights, planes or mirrors ([`AdaptiveRows`]),
+//! conservatively:
 //! - *shared samples*: every centre ray is traced once, with an identity (what decides
 //!   its colour discontinuously: the object; in the features path also the checker
 //!   cell, which lights reach the point, what each reflected ray hit). A pixel whose
@@ -47,7 +66,7 @@
 //!   semi-minor axis under [`SMALL`] pixels may hold no pixel centre at all; every pixel
 //!   whose footprint meets its bounding box, widened by one pixel, is an edge pixel.
 //!
-//! What the rule can miss: a feature narrower than the spacing of the pixel centres
+//! What the shared-sample rule can miss: a feature narrower than the spacing of the pixel centres
 //! that falls between them (the tip of a thin silhouette, a shadow or checker sliver,
 //! a small object seen in a mirror) where no centre in the 3×3 neighbourhood sees it;
 //! and two identities that collide in 16 bits (one in 65,536). The README's
@@ -195,8 +214,10 @@ impl FromStr for Sampling {
     }
 }
 
-/// The widest image `Adaptive` keeps its two rows of shared samples for; a wider
-/// image's pixels are all edge pixels (`Grid(n)`'s).
+/// The widest image `Adaptive` keeps its two rows of shared samples for (scenes with
+/// features, and Lab #1 frames the silhouettes cannot decide); there, a wider image's
+/// pixels are all edge pixels (`Grid(n)`'s). A Lab #1 frame decided by its silhouettes
+/// has no width limit.
 pub const ADAPTIVE_MAX_WIDTH: usize = 256;
 
 /// Silhouettes whose semi-minor axis (lower bound, pixels) is under this may hold no
@@ -415,19 +436,7 @@ impl Rows for AdaptiveRows {
     where
         X: RowTracer<'s, T, Sh>,
     {
-        // The render's own columns and rows inside the traced (ringed) ones.
-        let inside = |lo: u32, hi: u32, offset: i32, clip_at: i32, clip_len: u32| {
-            let c0 = i64::from(clip_at) - i64::from(offset);
-            let c1 = c0 + i64::from(clip_len);
-            let a = i64::from(lo).max(c0);
-            let b = i64::from(hi).min(c1);
-            (a < b).then_some((a as u32, b as u32))
-        };
-        let c = self.clip;
-        let Some((ri0, ri1)) = inside(frame.i0, frame.i1, frame.offset.x, c.top_left.x, c.size.width) else {
-            return Ok(());
-        };
-        let Some((rj0, rj1)) = inside(frame.j0, frame.j1, frame.offset.y, c.top_left.y, c.size.height) else {
+        let Some(((ri0, ri1), (rj0, rj1))) = own_area(frame, self.clip) else {
             return Ok(());
         };
         let steps = SubSteps::new(frame, self.n);
@@ -506,6 +515,522 @@ impl Rows for AdaptiveRows {
         }
         Ok(())
     }
+}
+
+/// [`Sampling::Adaptive`]`(n)` for scenes whose colours jump only at sphere
+/// silhouettes (Lab #1 on spheres): the edge pixels come from the silhouettes alone,
+/// per row, and no sample is shared between pixels (see [`SpanBands`]). A frame where
+/// that cannot be proven (a silhouette that is not a bounded ellipse, two spheres that
+/// touch) is drawn by [`AdaptiveRows`]' shared samples; `clip` is the render's own,
+/// and the frame is ringed for that case.
+#[derive(Clone, Copy)]
+pub(crate) struct SpanAdaptiveRows {
+    pub n: u32,
+    pub clip: Rectangle,
+}
+
+/// A ring on the image between two ellipses: `outer` contains it, `inner` (`None`:
+/// empty) is cut out of it.
+#[derive(Clone, Copy)]
+struct Ring {
+    outer: crate::span::Silhouette,
+    inner: Option<crate::span::Silhouette>,
+    /// The outer ellipse's [`Silhouette::reach_consts`](crate::span::Silhouette::reach_consts).
+    reach: (f32, f32),
+}
+
+impl Ring {
+    fn new(outer: crate::span::Silhouette, inner: Option<crate::span::Silhouette>) -> Self {
+        Self {
+            outer,
+            inner,
+            reach: outer.reach_consts(),
+        }
+    }
+
+    /// Row `j`'s columns `i` whose segment `[i − h, i + h] × [j − h, j + h]` meets the
+    /// outer ellipse (`lo..hi`) and, within them, those whose segment lies inside the
+    /// inner one (`in_lo..in_hi`, empty as `hi..hi`); clamped to `f0..f1`. `None` if
+    /// the outer one is out of reach.
+    #[inline(always)]
+    fn columns(&self, j: u32, h: f32, (f0, f1): (f32, f32)) -> Option<[u32; 4]> {
+        // Clamped first (the bounds are integers, so clamping and rounding commute),
+        // then rounded by conversion: the values are in [0, 2¹³].
+        let floor = |x: f32| x.max(f0).min(f1) as u32;
+        let ceil = |x: f32| {
+            let x = x.max(f0).min(f1);
+            let t = x as u32;
+            t + u32::from((t as f32) < x)
+        };
+        let (x0, x1) = self.outer.band_reach(j, h, self.reach)?;
+        // [i − h, i + h] meets [x0, x1]: ⌈x0 − h⌉ ..= ⌊x1 + h⌋.
+        let lo = ceil(x0 - h);
+        let hi = (floor(x1 + h) + 1).min(f1 as u32);
+        if lo >= hi {
+            return None;
+        }
+        // [i − h, i + h] inside [x0, x1]: ⌈x0 + h⌉ ..= ⌊x1 − h⌋.
+        let (in_lo, in_hi) = match self.inner.and_then(|s| s.band_inside(j, h)) {
+            Some((x0, x1)) => {
+                let a = ceil(x0 + h).max(lo);
+                let z = (floor(x1 - h) + 1).min(hi);
+                if a < z {
+                    (a, z)
+                } else {
+                    (hi, hi)
+                }
+            }
+            None => (hi, hi),
+        };
+        Some([lo, hi, in_lo, in_hi])
+    }
+}
+
+/// Per frame, per sphere: the ring between where sub-pixel and centre rays can hit it
+/// and where they all do (the silhouette's edge), and the ring where the centre's
+/// Lab #1 shade may be more than [`SHADE_TOLERANCE`] from the pixel's mean.
+struct SpanBands {
+    silhouette: Ring,
+    shade: Option<Ring>,
+}
+
+/// Per row: a sphere some ray of the row's pixels can hit (`lo..hi`: the columns
+/// whose samples can hit it), and the row's edge columns for it: four intervals (the
+/// silhouette's ring on either side, the shading ring on either side), empty ones as
+/// `(x, x)`.
+struct Band<'s, T: TestStrategy, Sh: Shader> {
+    index: usize,
+    sphere: &'s FrameSphere<T, Sh>,
+    lo: u32,
+    hi: u32,
+    /// The columns whose samples all hit it.
+    inside: (u32, u32),
+    edges: [(u32, u32); 4],
+}
+
+impl<T: TestStrategy, Sh: Shader> Band<'_, T, Sh> {
+    /// The sphere's edge columns in this row.
+    #[inline(always)]
+    fn edges(&self) -> [(u32, u32); 4] {
+        self.edges
+    }
+}
+
+/// The first run `[lo, hi)` of edge columns at or after column `from` (the union of
+/// the bands' edge intervals, merged where they touch); `(u32::MAX, u32::MAX)` if none.
+fn next_edge<T: TestStrategy, Sh: Shader>(bands: &[Band<'_, T, Sh>], from: u32) -> (u32, u32) {
+    let mut lo = u32::MAX;
+    for b in bands {
+        for (a, z) in b.edges() {
+            if a < z && z > from {
+                lo = lo.min(a.max(from));
+            }
+        }
+    }
+    if lo == u32::MAX {
+        return (lo, lo);
+    }
+    let mut hi = lo;
+    loop {
+        let mut grown = false;
+        for b in bands {
+            for (a, z) in b.edges() {
+                if a < z && a <= hi && z > hi {
+                    hi = z;
+                    grown = true;
+                }
+            }
+        }
+        if !grown {
+            return (lo, hi);
+        }
+    }
+}
+
+impl Rows for SpanAdaptiveRows {
+    const CENTER: bool = false;
+    #[inline(always)]
+    fn clip(&self, clip: Rectangle) -> Rectangle {
+        // The ring the shared samples need if the frame falls back to them.
+        AdaptiveRows { n: self.n, clip }.clip(clip)
+    }
+
+    // Out of line: the one-ray path's callers do not carry its frame on their stack.
+    #[inline(never)]
+    fn draw_rows<'s, const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X>(
+        self,
+        frame: &Frame<'s, T, Sh>,
+        sink: &mut K,
+        mut tracer: impl FnMut(u32, &mut u32, &mut u32) -> X,
+    ) -> Result<(), K::Error>
+    where
+        X: RowTracer<'s, T, Sh>,
+    {
+        // A fast square root moves hits and their order by up to 6 %: nothing the
+        // silhouettes' margins cover.
+        let sils = if Q::EXACT {
+            span_bands::<N, S, T, Sh>(frame)
+        } else {
+            None
+        };
+        let Some(sils) = sils else {
+            let rows = AdaptiveRows {
+                n: self.n,
+                clip: self.clip,
+            };
+            return rows.draw_rows::<N, K, S, T, Q, Sh, X>(frame, sink, tracer);
+        };
+        // The render's own columns and rows inside the ringed frame.
+        let Some(((ri0, ri1), (rj0, rj1))) = own_area(frame, self.clip) else {
+            return Ok(());
+        };
+        let steps = SubSteps::new(frame, self.n);
+        // Half the extent of the sub-sample grid, `(n − 1)/(2n)` pixels, widened for
+        // the rounding of `i + o` (≤ 2⁻²⁴·(|i| + 1), below 2⁻¹¹ for i < 2¹³).
+        let half = (self.n - 1) as f32 / (2 * self.n) as f32 + 1.0 / 2048.0;
+        let mut stepper = S::new(frame.camera);
+        let mut active: Vec<_, N> = Vec::new();
+        let mut bands: Vec<Band<'s, T, Sh>, N> = Vec::new();
+        for j in rj0..rj1 {
+            let row_step = stepper.start_row(j, frame.i0);
+            let (mut lo, mut hi) = scanline::activate(frame, &mut stepper, j, &mut active);
+            let tracer = tracer(j, &mut lo, &mut hi);
+            let mut row = RowPixels::<S, T, Q, Sh, X>::new(frame, row_step, &mut active, (lo, hi), tracer, j);
+            // The ring's column on the left: traced, not drawn (a test's row state
+            // expects every column of its span).
+            for _ in frame.i0..ri0 {
+                row.next_color();
+            }
+            row_bands(frame, &sils, j, half, &mut bands);
+            let span_row = SpanRow::<N, S, T, Q, Sh, X> {
+                row,
+                bands: &bands,
+                steps: &steps,
+                edge: next_edge(&bands, ri0),
+                i: ri0,
+                end: ri1,
+                j,
+            };
+            sink.row(row_area(frame, ri0, ri1, j), span_row)?;
+        }
+        Ok(())
+    }
+}
+
+/// How far (8-bit levels) the Lab #1 shade at a pixel's centre may be from the mean
+/// of its sub-samples before the pixel is an edge pixel (see [`shade_ring`]).
+pub const SHADE_TOLERANCE: f32 = 1.5;
+
+/// Every sphere's [`SpanBands`] for the frame: silhouettes enlarged and shrunk by the
+/// test's margin and the larger of the stepping's and the sub-pixel rays' direction
+/// error (`Stepping::Direct`'s bound covers the latter: module docs).
+///
+/// `None` when the silhouettes alone cannot find the edges: a silhouette that is not
+/// a bounded ellipse, or two spheres closer than the sum of their radii plus
+/// `g = 2⁻¹⁰·(|L₁| + |L₂|)` (where both can be hit, the one in front can change inside
+/// a pixel). Between two other spheres a separating plane keeps the same one in front
+/// along every ray through both (the eye is on one side of it), with a gap no `t`'s
+/// rounding (`≲ 2⁻²⁰·|L|`) can close; and the eye's powers `|L|² − r²` (f32, error
+/// `≲ 2⁻²³·|L|²`) order them wherever a ray can hit both (the eye is then at least
+/// `g/2` from their radical plane, where the powers differ by at least `g²`).
+#[inline(never)]
+fn span_bands<const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
+    frame: &Frame<'_, T, Sh>,
+) -> Option<Vec<SpanBands, N>> {
+    use crate::span::Silhouette;
+    let camera = frame.camera;
+    let err = S::error_bound(camera).max(<crate::stepping::DirectStep as Stepper>::error_bound(camera));
+    let mut out: Vec<SpanBands, N> = Vec::new();
+    for (k, fs) in frame.spheres.iter().enumerate() {
+        let g = &fs.geom;
+        let r = crate::math::sqrt_exact(g.r2);
+        // Each pair once. The f32 distance's rounding (≲ 2⁻²²·(|L₁| + |L₂|)) is far
+        // inside the gap asked for; NaN counts as touching.
+        let touching = frame.spheres.iter().skip(k + 1).any(|other| {
+            let o = &other.geom;
+            let gap = crate::math::sqrt_exact((g.l - o.l).dot(g.l - o.l)) - r - crate::math::sqrt_exact(o.r2);
+            !(gap > (crate::math::sqrt_exact(g.l2) + crate::math::sqrt_exact(o.l2)) * (1.0 / 1024.0))
+        });
+        // The culling ellipse where it was built for the same error (the direct
+        // stepping), saving its f64 work.
+        let outer = if fs.silhouette != Silhouette::All && S::error_bound(camera) >= err {
+            fs.silhouette
+        } else {
+            Silhouette::new(g.l, r, camera, T::MARGIN, err)
+        };
+        if touching || outer == Silhouette::All {
+            return None;
+        }
+        // Never fails: one per sphere.
+        let _ = out.push(SpanBands {
+            silhouette: Ring::new(outer, Silhouette::inner(g.l, r, camera, T::MARGIN, err)),
+            shade: shade_ring(g.l, r, camera, outer),
+        });
+    }
+    Some(out)
+}
+
+/// Where the centre's Lab #1 shade may be more than [`SHADE_TOLERANCE`] levels from
+/// the mean of a pixel's sub-samples: hits whose `f = n·(−w)` lies in `[f_lo, f_hi]`,
+/// as the ring of centres between the sphere of the points with `f ≥ f_lo` and the
+/// one of the points with `f ≥ f_hi`.
+///
+/// The points of the sphere (centre `L`, radius `r`) with `n·(−w) ≥ f` lie in the
+/// sphere of centre `L − r·f·w` and radius `r·√(1 − f²)` (their distance² to it is
+/// `r²·(1 − 2f·n·(−w) + f²) ≤ r²·(1 − f²)`), so a centre ray outside its silhouette
+/// hits at `f < f_lo`; a centre ray inside the silhouette of the `f_hi` one hits, for
+/// all but the perspective's slight bulge, at `f ≥ f_hi` (a heuristic: the box
+/// filter's error is not an edge, and the tables measure it).
+///
+/// The error model, for a silhouette of radius `R` pixels (its semi-minor axis) and a
+/// channel of 255: the mean of the `n × n` samples (offset variance `5/64` px² for
+/// `n` = 4) minus the centre is about `(5/128)·∇²c` plus the linear-light average's
+/// `0.6·|∇c|²·(5/64)/c`, together `≲ 22/(f³·R²)` levels, below the tolerance where
+/// `f³ ≥ 22/(tol·R²)`; the `f = 0.3` floor of Lab #1 is a kink whose slope
+/// `s ≈ 255·3.2/R` levels per pixel moves the mean by up to `s/8` levels, more than the
+/// tolerance within `¼ − 2·tol/s` pixels of it.
+fn shade_ring(
+    l: Vec3,
+    r: f32,
+    camera: &crate::camera::Camera,
+    outer: crate::span::Silhouette,
+) -> Option<Ring> {
+    use crate::span::{Margin, Silhouette};
+    let radius = outer.bounds()?.1.max(0.5);
+    let tol = SHADE_TOLERANCE;
+    let slope = 255.0 * 3.2 / radius;
+    let kink = (0.25 - 2.0 * tol / slope).max(0.0) * 3.2 / radius;
+    let smooth = libm::cbrtf(22.0 / (tol * radius * radius));
+    let f_lo = if kink > 0.0 {
+        crate::shade::AMBIENT - kink
+    } else {
+        crate::shade::AMBIENT
+    };
+    let f_hi = smooth.max(crate::shade::AMBIENT + kink);
+    if !(f_hi > f_lo) {
+        return None;
+    }
+    let w = camera.w();
+    let cap = |f: f32, side_outer: bool| {
+        let f = f.clamp(0.0, 1.0);
+        let (c, rho) = (l - w * (r * f), r * crate::math::sqrt_exact(1.0 - f * f));
+        if side_outer {
+            Some(Silhouette::new(c, rho, camera, Margin::Linear, 0.0))
+        } else if f < 1.0 {
+            Silhouette::inner(c, rho, camera, Margin::Linear, 0.0)
+        } else {
+            None
+        }
+    };
+    Some(Ring::new(cap(f_lo, true)?, cap(f_hi, false)))
+}
+
+/// Row `j`'s [`Band`]s (in scene order) for sub-samples within `half` pixels of the
+/// centres: columns whose samples can reach a sphere's outer silhouette, and its edge
+/// columns: those of the silhouette's ring and, by their centres, the shading ring's.
+#[inline(never)]
+fn row_bands<'s, const N: usize, T: TestStrategy, Sh: Shader>(
+    frame: &Frame<'s, T, Sh>,
+    sils: &[SpanBands],
+    j: u32,
+    half: f32,
+    bands: &mut Vec<Band<'s, T, Sh>, N>,
+) {
+    bands.clear();
+    let frame_columns = (frame.i0 as f32, frame.i1 as f32);
+    for (index, (sphere, sil)) in frame.spheres.iter().zip(sils).enumerate() {
+        let Some([lo, hi, in_lo, in_hi]) = sil.silhouette.columns(j, half, frame_columns) else {
+            continue;
+        };
+        let shade = sil
+            .shade
+            .and_then(|ring| ring.columns(j, 0.0, frame_columns))
+            .unwrap_or([hi, hi, hi, hi]);
+        // Never fails: one per sphere.
+        let _ = bands.push(Band {
+            index,
+            sphere,
+            lo,
+            hi,
+            inside: (in_lo, in_hi),
+            edges: [
+                (lo, in_lo),
+                (in_hi, hi),
+                (shade[0], shade[2]),
+                (shade[3], shade[1]),
+            ],
+        });
+    }
+    // A sphere's edges are hidden where every sample hits a sphere in front of it
+    // (`c = |L|² − r²`, the eye's power, is smaller for the one in front: the radical
+    // plane separates two spheres that do not touch, and a ray that hits both crosses
+    // it from the eye's side); trimmed at the ends, the common case of a narrow edge.
+    for k in 0..bands.len() {
+        let Some(b) = bands.get(k) else { continue };
+        let (c, mut edges) = (b.sphere.geom.c, b.edges);
+        for front in bands.iter().filter(|f| f.sphere.geom.c < c) {
+            let (a, z) = front.inside;
+            for e in &mut edges {
+                if a <= e.0 && e.0 < z {
+                    e.0 = z.min(e.1);
+                }
+                if a < e.1 && e.1 <= z {
+                    e.1 = a.max(e.0);
+                }
+            }
+        }
+        if let Some(b) = bands.get_mut(k) {
+            b.edges = edges;
+        }
+    }
+}
+
+/// One row of [`SpanAdaptiveRows`]: the centre rays as the one-ray loop traces them,
+/// and in edge columns the average of the sub-pixel rays, each tested against the
+/// spheres whose band holds the column.
+struct SpanRow<'a, 'r, 's, const N: usize, S: Stepper, T: TestStrategy, Q, Sh: Shader, X> {
+    row: RowPixels<'r, 's, S, T, Q, Sh, X>,
+    bands: &'a [Band<'s, T, Sh>],
+    steps: &'a SubSteps,
+    /// The current or next run of edge columns.
+    edge: (u32, u32),
+    i: u32,
+    end: u32,
+    j: u32,
+}
+
+impl<'s, const N: usize, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>>
+    SpanRow<'_, '_, 's, N, S, T, Q, Sh, X>
+{
+    /// Whether column `i` (columns come in increasing order) is an edge column: one
+    /// comparison before the next run of edge columns.
+    #[inline(always)]
+    fn is_edge(&mut self, i: u32) -> bool {
+        if i < self.edge.0 {
+            return false;
+        }
+        if i >= self.edge.1 {
+            self.edge = next_edge(self.bands, i);
+        }
+        i >= self.edge.0
+    }
+
+    /// Column `i`'s `Grid(n)` average over the spheres whose band holds it.
+    #[inline(never)]
+    fn averaged(&mut self, i: u32) -> Rgb888 {
+        // The spheres some sample of this pixel can hit, once for its n² rays.
+        let mut cands: Vec<(usize, &'s FrameSphere<T, Sh>), N> = Vec::new();
+        for b in self.bands.iter().filter(|b| i.wrapping_sub(b.lo) < b.hi - b.lo) {
+            // Never fails: one per sphere.
+            let _ = cands.push((b.index, b.sphere));
+        }
+        average::<T, Q, Sh, X>(
+            cands.iter().copied(),
+            self.row.tracer_mut(),
+            self.steps,
+            i,
+            self.j,
+        )
+    }
+}
+
+impl<'s, const N: usize, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>> Iterator
+    for SpanRow<'_, '_, 's, N, S, T, Q, Sh, X>
+{
+    type Item = Rgb888;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<Rgb888> {
+        let i = self.i;
+        if i >= self.end {
+            return None;
+        }
+        self.i += 1;
+        // The centre ray always: a test's row state (forward differences) expects
+        // every column of its span.
+        let center = self.row.next_color();
+        Some(if self.is_edge(i) { self.averaged(i) } else { center })
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let n = (self.end - self.i) as usize;
+        (n, Some(n))
+    }
+}
+
+impl<'s, const N: usize, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>> PixelRow
+    for SpanRow<'_, '_, 's, N, S, T, Q, Sh, X>
+{
+    /// Every pixel as a [`Sample`]: a centre-ray pixel as the one-ray loop gives it
+    /// (with its hit), an edge pixel with its average, `n²` rays and no hit.
+    fn samples(mut self) -> impl Iterator<Item = Sample> {
+        let rays = (self.steps.n * self.steps.n) as u32;
+        core::iter::from_fn(move || {
+            let i = self.i;
+            let mut sample = self.row.next()?;
+            self.i += 1;
+            if self.is_edge(i) {
+                sample.color = self.averaged(i);
+                sample.hit = None;
+                sample.rays = rays;
+            }
+            Some(sample)
+        })
+    }
+
+    fn color_runs(mut self) -> ColorRuns<impl Iterator<Item = Rgb888>> {
+        // Background before and after both the spans' union and the edge columns.
+        let spans = self.row.spans();
+        let first = spans
+            .map_or(self.end, |(lo, _)| lo)
+            .min(self.edge.0)
+            .min(self.end)
+            .max(self.i);
+        let last = spans
+            .map_or(first, |(_, hi)| hi)
+            .max(
+                self.bands
+                    .iter()
+                    .filter(|b| b.lo < b.hi)
+                    .map(|b| b.hi)
+                    .max()
+                    .unwrap_or(first),
+            )
+            .min(self.end)
+            .max(first);
+        let before = first - self.i;
+        self.row.skip_columns(before);
+        self.i = first;
+        let after = self.end - last;
+        self.end = last;
+        ColorRuns {
+            background: self.row.background(),
+            before,
+            traced_len: last - first,
+            traced: self,
+            after,
+        }
+    }
+}
+
+/// The render's own columns and rows (its `clip`) inside the frame's traced, ringed
+/// ones; `None` if it shows nothing.
+fn own_area<T: TestStrategy, Sh: Shader>(
+    frame: &Frame<'_, T, Sh>,
+    clip: Rectangle,
+) -> Option<((u32, u32), (u32, u32))> {
+    let inside = |lo: u32, hi: u32, offset: i32, clip_at: i32, clip_len: u32| {
+        let c0 = i64::from(clip_at) - i64::from(offset);
+        let c1 = c0 + i64::from(clip_len);
+        let a = i64::from(lo).max(c0);
+        let b = i64::from(hi).min(c1);
+        (a < b).then_some((a as u32, b as u32))
+    };
+    let c = clip;
+    Some((
+        inside(frame.i0, frame.i1, frame.offset.x, c.top_left.x, c.size.width)?,
+        inside(frame.j0, frame.j1, frame.offset.y, c.top_left.y, c.size.height)?,
+    ))
 }
 
 /// Where row `j`, columns `i0..i1` of the image, go on the target.
@@ -609,8 +1134,8 @@ impl SubSteps {
 /// Pixel `(i, j)` with `Grid(n)`'s rays: each traced against every sphere with the
 /// method's single-ray test, coloured by the row's tracer, averaged in linear light.
 #[inline(never)]
-fn average<'s, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>>(
-    spheres: &'s [FrameSphere<T, Sh>],
+fn average<'s, T: TestStrategy + 's, Q: SqrtFn, Sh: Shader + 's, X: RowTracer<'s, T, Sh>>(
+    spheres: impl Iterator<Item = (usize, &'s FrameSphere<T, Sh>)> + Clone,
     tracer: &mut X,
     st: &SubSteps,
     i: u32,
@@ -624,7 +1149,7 @@ fn average<'s, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>>(
             let a = d.dot(d);
             let mut best = None;
             let mut t_max = f32::INFINITY;
-            for (index, s) in spheres.iter().enumerate() {
+            for (index, s) in spheres.clone() {
                 if let Some(t) = T::ray::<Q>(&s.geom, d, a, t_max) {
                     t_max = t;
                     best = Some((index, t, s));
@@ -686,7 +1211,13 @@ impl<'s, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>> Sample
         }
         let rays = (self.steps.n * self.steps.n) as u32;
         (
-            average::<T, Q, Sh, X>(self.spheres, self.tracer, self.steps, i, self.j),
+            average::<T, Q, Sh, X>(
+                self.spheres.iter().enumerate(),
+                self.tracer,
+                self.steps,
+                i,
+                self.j,
+            ),
             rays,
         )
     }

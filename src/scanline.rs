@@ -363,6 +363,44 @@ impl<'r, 's, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s
         }
     }
 
+    /// The next column's centre colour, exactly as [`PixelRow::color_runs`] traces it
+    /// (background outside the union of the spans). Past the row's end: background.
+    #[inline(always)]
+    pub(crate) fn next_color(&mut self) -> Rgb888 {
+        let i = self.i;
+        if i >= self.end {
+            return self.tracer.background();
+        }
+        self.i += 1;
+        let d = self.stepper.next_direction();
+        if i >= self.lo_all && i < self.hi_all {
+            let best = self.closest(i, d);
+            self.tracer.pixel(best, i, d).1
+        } else {
+            self.tracer.background()
+        }
+    }
+
+    /// Steps over `n` background columns without tracing them (as
+    /// [`PixelRow::color_runs`] does before the union of the spans).
+    #[inline(always)]
+    pub(crate) fn skip_columns(&mut self, n: u32) {
+        for _ in 0..n {
+            self.stepper.next_direction();
+        }
+        self.i += n;
+    }
+
+    /// The union `[lo, hi)` of the row's active spans, `None` if no sphere is active.
+    pub(crate) fn spans(&self) -> Option<(u32, u32)> {
+        (self.lo_all < self.hi_all).then_some((self.lo_all, self.hi_all))
+    }
+
+    /// The colour of rays that hit nothing.
+    pub(crate) fn background(&self) -> Rgb888 {
+        self.tracer.background()
+    }
+
     /// The row's tracer (for sub-pixel rays).
     pub(crate) fn tracer_mut(&mut self) -> &mut X {
         &mut self.tracer

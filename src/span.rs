@@ -119,10 +119,125 @@ impl Silhouette {
     /// camera, enlarged for the test's `margin` and the stepping's direction error
     /// bound `step_err`. `All` whenever culling cannot be proven safe.
     pub(crate) fn new(l: Vec3, radius: f32, camera: &Camera, margin: Margin, step_err: f32) -> Self {
-        let Some(ellipse) = ellipse(l, radius, camera, margin, step_err) else {
+        let Some(ellipse) = ellipse(l, radius, camera, margin, step_err, Side::Outer) else {
             return Silhouette::All;
         };
         ellipse
+    }
+
+    /// The sphere's silhouette **shrunk** by the same margins: every ray inside it (a
+    /// test's rounding and a direction error up to `step_err` included) hits the
+    /// sphere. `None` when that cannot be proven (the shrunk sphere is empty, or its
+    /// silhouette is not a bounded ellipse).
+    pub(crate) fn inner(
+        l: Vec3,
+        radius: f32,
+        camera: &Camera,
+        margin: Margin,
+        step_err: f32,
+    ) -> Option<Self> {
+        ellipse(l, radius, camera, margin, step_err, Side::Inner)
+    }
+
+    /// The columns `x` (image coordinates, real) the silhouette reaches between rows
+    /// `j − h` and `j + h`: an interval containing the ellipse's cut with that band,
+    /// `None` if it misses the band. `All` reaches every column.
+    ///
+    /// The left edge `xc(y) − hw(y)` is convex in `y` and the right edge `xc(y) + hw(y)`
+    /// concave, so each extreme over the band is at the band's end nearest the edge's
+    /// own extreme row `dy = ∓kx·√(h0 / (q·(q + kx²)))`. Padded outward for the f32
+    /// rounding as [`Self::row_span`] is, plus `2⁻⁸` pixel.
+    ///
+    /// `reach` is [`Self::reach_consts`], once per frame.
+    #[inline]
+    pub(crate) fn band_reach(&self, j: u32, h: f32, reach: (f32, f32)) -> Option<(f32, f32)> {
+        let (half_height, m) = reach;
+        match *self {
+            Silhouette::All => Some((f32::NEG_INFINITY, f32::INFINITY)),
+            Silhouette::Ellipse {
+                y0i,
+                y0f,
+                q,
+                h0,
+                xc0,
+                kx,
+            } => {
+                let dy = (j as f32 - y0i) - y0f;
+                // The band in rows from the centre row, widened for the roundings of
+                // dy ± h, and cut to the ellipse's own rows (half-height widened by a
+                // relative 2⁻¹⁶ for its f32 rounding).
+                let slack = (dy.abs() + h) * (1.0 / 1_048_576.0);
+                let a = (dy - h - slack).max(-half_height);
+                let b = (dy + h + slack).min(half_height);
+                if !(a <= b) {
+                    return None;
+                }
+                let edge = |y: f32, sign: f32| {
+                    let y = y.max(a).min(b);
+                    let hw2 = (h0 - q * (y * y)) + h0 * (1.0 / 65536.0);
+                    let hw = crate::math::sqrt_exact(hw2.max(0.0));
+                    let shift = kx * y;
+                    let pad = (xc0.abs() + shift.abs() + hw) * (1.0 / 1_048_576.0) + 1.0 / 256.0;
+                    xc0 + shift + sign * (hw + pad)
+                };
+                let (lo, hi) = (edge(-kx * m, -1.0), edge(kx * m, 1.0));
+                // NaN coefficients reach everything.
+                if lo <= hi {
+                    Some((lo, hi))
+                } else {
+                    Some((f32::NEG_INFINITY, f32::INFINITY))
+                }
+            }
+        }
+    }
+
+    /// [`Self::band_reach`]'s per-frame constants: the half-height (widened by a
+    /// relative 2⁻¹⁶ for its rounding) and `√(h0 / (q·(q + kx²)))`.
+    pub(crate) fn reach_consts(&self) -> (f32, f32) {
+        match *self {
+            Silhouette::All => (f32::INFINITY, 0.0),
+            Silhouette::Ellipse { q, h0, kx, .. } => (
+                crate::math::sqrt_exact(h0 / q) * (1.0 + 1.0 / 65536.0),
+                crate::math::sqrt_exact(h0 / (q * (q + kx * kx))),
+            ),
+        }
+    }
+
+    /// The columns `x` whose vertical segment from row `j − h` to `j + h` lies inside
+    /// the ellipse: the cuts with the band's two ends intersected (the ellipse is
+    /// convex), padded inward for the f32 rounding and `2⁻⁸` pixel. `None` if empty;
+    /// `All` is never inside (it is not a proven region).
+    #[inline]
+    pub(crate) fn band_inside(&self, j: u32, h: f32) -> Option<(f32, f32)> {
+        match *self {
+            Silhouette::All => None,
+            Silhouette::Ellipse {
+                y0i,
+                y0f,
+                q,
+                h0,
+                xc0,
+                kx,
+            } => {
+                let dy = (j as f32 - y0i) - y0f;
+                let slack = (dy.abs() + h) * (1.0 / 1_048_576.0);
+                let (mut lo, mut hi) = (f32::NEG_INFINITY, f32::INFINITY);
+                // The band's ends, each taken at its outermost rounding: the segment
+                // between two inside points is inside.
+                for y in [dy - h - slack, dy + h + slack] {
+                    let hw2 = (h0 - q * (y * y)) - h0 * (1.0 / 65536.0);
+                    if !(hw2 >= 0.0) {
+                        return None;
+                    }
+                    let hw = crate::math::sqrt_exact(hw2);
+                    let shift = kx * y;
+                    let pad = (xc0.abs() + shift.abs() + hw) * (1.0 / 1_048_576.0) + 1.0 / 256.0;
+                    lo = lo.max(xc0 + shift - hw + pad);
+                    hi = hi.min(xc0 + shift + hw - pad);
+                }
+                (lo <= hi).then_some((lo, hi))
+            }
+        }
     }
 
     /// The columns `[lo, hi)` of row `j` (clamped to the visible `[i0, i1)`) whose
@@ -173,8 +288,25 @@ const TWO_M16: f64 = 1.0 / 65_536.0;
 const TWO_M17: f64 = 1.0 / 131_072.0;
 const TWO_M18: f64 = 1.0 / 262_144.0;
 
-/// The enlarged silhouette as an ellipse, or `None` when it is not a bounded ellipse.
-fn ellipse(l: Vec3, radius: f32, camera: &Camera, margin: Margin, step_err: f32) -> Option<Silhouette> {
+/// Which way the margins move the sphere's radius.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Side {
+    /// Enlarged: every ray that can hit the sphere is inside.
+    Outer,
+    /// Shrunk: every ray inside hits it.
+    Inner,
+}
+
+/// The enlarged (or shrunk) silhouette as an ellipse, or `None` when it is not a
+/// bounded ellipse.
+fn ellipse(
+    l: Vec3,
+    radius: f32,
+    camera: &Camera,
+    margin: Margin,
+    step_err: f32,
+    side: Side,
+) -> Option<Silhouette> {
     let v64 = |v: Vec3| [f64::from(v.x), f64::from(v.y), f64::from(v.z)];
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let (lv, f, du, dv, w) = (
@@ -192,12 +324,28 @@ fn ellipse(l: Vec3, radius: f32, camera: &Camera, margin: Margin, step_err: f32)
     if !(r > 0.0 && step_err < 1e-2 && l_len.is_finite()) {
         return None;
     }
-    // Enlarge the sphere: the test's rounding, then the stepping's.
-    let r_eff = match margin {
-        Margin::Linear => r * (1.0 + TWO_M16) + l_len * TWO_M18,
-        Margin::Quadratic => libm::sqrt(r * r * (1.0 + TWO_M10) + l2 * TWO_M17),
+    // Enlarge the sphere: the test's rounding, then the stepping's (or shrink it by
+    // the same amounts: a miss needs the same error the other way).
+    let r_tot = match side {
+        Side::Outer => {
+            let r_eff = match margin {
+                Margin::Linear => r * (1.0 + TWO_M16) + l_len * TWO_M18,
+                Margin::Quadratic => libm::sqrt(r * r * (1.0 + TWO_M10) + l2 * TWO_M17),
+            };
+            r_eff + 2.0 * step_err * (1.0 + 1e-3) * l_len
+        }
+        Side::Inner => {
+            let r_eff = match margin {
+                Margin::Linear => r * (1.0 - TWO_M16) - l_len * TWO_M18,
+                Margin::Quadratic => libm::sqrt((r * r * (1.0 - TWO_M10) - l2 * TWO_M17).max(0.0)),
+            };
+            let r_tot = r_eff - 2.0 * step_err * (1.0 + 1e-3) * l_len;
+            if !(r_tot > 0.0) {
+                return None;
+            }
+            r_tot
+        }
     };
-    let r_tot = r_eff + 2.0 * step_err * (1.0 + 1e-3) * l_len;
     // A bounded ellipse needs the enlarged sphere strictly in front of the plane through
     // the eye parallel to the image (which also puts the eye outside it).
     if !(dot(lv, w) > r_tot * (1.0 + TWO_M10)) {
@@ -257,4 +405,144 @@ fn ellipse(l: Vec3, radius: f32, camera: &Camera, margin: Margin, step_err: f32)
         xc0: xc0 as f32,
         kx,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_graphics::prelude::Size;
+
+    /// `band_reach` contains every point of the ellipse in the band, and `band_inside`
+    /// holds only columns whose whole vertical segment is inside, on random spheres
+    /// seen by random cameras; probed on a fine grid, at the band's ends and at the
+    /// rows where the left and right edges reach furthest (where a reach taken at the
+    /// band's ends alone would be too narrow).
+    #[test]
+    fn band_reach_and_inside_hold_on_a_fine_grid() {
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = |lo: f32, hi: f32| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
+        };
+        let (mut probed, mut inside_probed, mut interior_extreme) = (0u32, 0u32, 0u32);
+        for _ in 0..300 {
+            let eye = Vec3::new(next(-2.0, 2.0), next(-2.0, 2.0), next(4.0, 9.0));
+            let camera = Camera::new(
+                eye,
+                Vec3::new(next(-1.0, 1.0), next(-1.0, 1.0), 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+                next(0.4, 1.6),
+                Size::new(64, 48),
+            )
+            .unwrap();
+            let centre = Vec3::new(next(-3.0, 3.0), next(-3.0, 3.0), next(-3.0, 2.0));
+            let radius = next(0.05, 1.5);
+            let l = centre - eye;
+            let Silhouette::Ellipse {
+                y0i,
+                y0f,
+                q,
+                h0,
+                xc0,
+                kx,
+            } = Silhouette::new(l, radius, &camera, Margin::Linear, 0.0)
+            else {
+                continue;
+            };
+            let sil = Silhouette::new(l, radius, &camera, Margin::Linear, 0.0);
+            let reach = sil.reach_consts();
+            // The ellipse in f64 from its own f32 coefficients.
+            let y0 = f64::from(y0i) + f64::from(y0f);
+            let inside = |x: f64, y: f64| {
+                let dy = y - y0;
+                let xc = f64::from(xc0) + f64::from(kx) * dy;
+                (x - xc) * (x - xc) <= f64::from(h0) - f64::from(q) * dy * dy
+            };
+            let half_height = (f64::from(h0) / f64::from(q)).sqrt();
+            let m = (f64::from(h0) / (f64::from(q) * (f64::from(q) + f64::from(kx) * f64::from(kx)))).sqrt();
+            for j in 0..48u32 {
+                for h in [0.0f32, 0.25, 0.375] {
+                    let (yl, yh) = (f64::from(j) - f64::from(h), f64::from(j) + f64::from(h));
+                    let mut ys: std::vec::Vec<f64> =
+                        (0..=16).map(|k| yl + (yh - yl) * f64::from(k) / 16.0).collect();
+                    // The edges' extreme rows, where they fall inside the band.
+                    for e in [y0 - f64::from(kx) * m, y0 + f64::from(kx) * m] {
+                        if e > yl && e < yh {
+                            ys.push(e);
+                            interior_extreme += 1;
+                        }
+                    }
+                    ys.extend(
+                        [y0 - half_height, y0 + half_height]
+                            .iter()
+                            .filter(|&&y| y >= yl && y <= yh),
+                    );
+                    let got = sil.band_reach(j, h, reach);
+                    for &y in &ys {
+                        let dy = y - y0;
+                        let hw2 = f64::from(h0) - f64::from(q) * dy * dy;
+                        if hw2 < 0.0 {
+                            continue;
+                        }
+                        let xc = f64::from(xc0) + f64::from(kx) * dy;
+                        for x in [xc - hw2.sqrt(), xc + hw2.sqrt()] {
+                            let (lo, hi) = got.expect("the ellipse reaches this band");
+                            assert!(
+                                f64::from(lo) <= x && x <= f64::from(hi),
+                                "row {j} ± {h}: point ({x}, {y}) outside reach {lo}..{hi}"
+                            );
+                            probed += 1;
+                        }
+                    }
+                    if let Some((lo, hi)) = sil.band_inside(j, h) {
+                        for k in 0..=8 {
+                            let x = f64::from(lo) + (f64::from(hi) - f64::from(lo)) * f64::from(k) / 8.0;
+                            for &y in &ys {
+                                assert!(
+                                    inside(x, y),
+                                    "row {j} ± {h}: ({x}, {y}) in band_inside but outside"
+                                );
+                                inside_probed += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            probed > 10_000 && inside_probed > 10_000,
+            "{probed} / {inside_probed}"
+        );
+        // The extreme rows were inside bands often: the case the clamp exists for.
+        assert!(interior_extreme > 100, "{interior_extreme}");
+    }
+
+    /// The shrunk silhouette lies inside the enlarged one and both bracket the sphere's
+    /// own (margins zero): its cut with a row is narrower, and it disappears for a
+    /// sphere too small for the margins.
+    #[test]
+    fn inner_silhouette_is_inside_the_outer() {
+        let camera = Camera::new(
+            Vec3::new(0.0, 0.0, 10.0),
+            Vec3::ZERO,
+            Vec3::new(0.0, 1.0, 0.0),
+            0.8,
+            Size::new(64, 48),
+        )
+        .unwrap();
+        let l = Vec3::new(0.3, -0.2, -10.0);
+        let outer = Silhouette::new(l, 1.0, &camera, Margin::Quadratic, 1e-6);
+        let exact = Silhouette::new(l, 1.0, &camera, Margin::Linear, 0.0);
+        let inner = Silhouette::inner(l, 1.0, &camera, Margin::Quadratic, 1e-6).unwrap();
+        let width = |s: &Silhouette| match *s {
+            Silhouette::Ellipse { h0, .. } => h0,
+            Silhouette::All => f32::INFINITY,
+        };
+        assert!(width(&inner) < width(&exact) && width(&exact) < width(&outer));
+        // Quadratic margin 2⁻¹⁷·|L|² ≈ 7.6e-4 against r² = 1e-4: nothing is proven.
+        assert!(Silhouette::inner(l, 0.01, &camera, Margin::Quadratic, 0.0).is_none());
+        assert!(Silhouette::inner(l, 0.01, &camera, Margin::Linear, 0.0).is_some());
+    }
 }

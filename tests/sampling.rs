@@ -439,3 +439,79 @@ fn wide_images_draw_the_same_pixels_whatever_the_clip() {
         }
     }
 }
+
+/// On a Lab #1 scene the adaptive rule takes its edge pixels from the silhouettes: a
+/// pixel drawn with its centre ray alone has every one of its `Grid(n)` sub-samples on
+/// the sphere its centre hits (or on none), for every `n` and every method with the
+/// exact square root (a fast one falls back to the shared samples, as do touching
+/// spheres), on random scenes of spheres that do not touch, checked with the
+/// single-ray query `Scene::closest_hit`.
+#[test]
+fn a_centre_ray_pixel_has_no_silhouette_in_it() {
+    let mut rng = Rng(0x51_1E7);
+    let methods: Vec<Method> = Method::ALL
+        .into_iter()
+        .filter(|m| m.sqrt == embedded_raytracer::Sqrt::Exact)
+        .collect();
+    let (mut checked, mut edge) = (0usize, 0usize);
+    for round in 0..12 {
+        let camera = Camera::new(
+            rng.vec(3.0) + Vec3::new(0.0, 0.0, 9.0),
+            Vec3::ZERO,
+            Vec3::new(0.0, 1.0, 0.0),
+            rng.range(0.5, 1.2),
+            Size::new(64, 48),
+        )
+        .unwrap();
+        let mut scene = Scene::<8>::new(Rgb888::BLACK);
+        let mut placed: Vec<(Vec3, f32)> = Vec::new();
+        while placed.len() < 8 {
+            let (c, r) = (rng.vec(2.5), rng.range(0.05, 1.0));
+            // Not touching: a clear gap to every sphere placed.
+            if placed.iter().all(|&(o, s)| (c - o).length() > r + s + 0.05) {
+                placed.push((c, r));
+                scene
+                    .push(Sphere::new(
+                        c,
+                        r,
+                        Rgb888::new(200, 100 + 10 * placed.len() as u8, 50),
+                    ))
+                    .unwrap();
+            }
+        }
+        let method = methods[round % methods.len()];
+        for n in 2..=4u32 {
+            let render = Render::<8, Rgb888>::new(&scene, &camera)
+                .with_method(method)
+                .with_sampling(Sampling::adaptive(n).unwrap());
+            let mut pixels = Vec::new();
+            render.trace(|s| pixels.push((s.pixel, s.hit.map(|h| h.index), s.rays)));
+            for (p, hit, rays) in pixels {
+                if rays > 1 {
+                    edge += 1;
+                    continue;
+                }
+                let (i, j) = (p.x as u32, p.y as u32);
+                let d = camera.direction(i, j);
+                let du = camera.direction(i + 1, j) - d;
+                let dv = camera.direction(i, j + 1) - d;
+                let o = |k: u32| (2 * k + 1) as f32 / (2 * n) as f32 - 0.5;
+                for a in 0..n {
+                    for b in 0..n {
+                        let sub = d + du * o(a) + dv * o(b);
+                        let got = scene
+                            .closest_hit(camera.eye(), sub, method.sphere_test, method.sqrt)
+                            .map(|h| h.index);
+                        assert_eq!(got, hit, "{method} adaptive:{n}: pixel {p:?}, sample ({a}, {b})");
+                        checked += 1;
+                    }
+                }
+            }
+        }
+    }
+    // Both kinds occur: the rule is exercised on both sides.
+    assert!(
+        checked > 100_000 && edge > 1_000,
+        "{checked} samples checked, {edge} edge pixels"
+    );
+}

@@ -119,7 +119,7 @@ impl Silhouette {
     /// camera, enlarged for the test's `margin` and the stepping's direction error
     /// bound `step_err`. `All` whenever culling cannot be proven safe.
     pub(crate) fn new(l: Vec3, radius: f32, camera: &Camera, margin: Margin, step_err: f32) -> Self {
-        let Some(ellipse) = ellipse(l, radius, camera, margin, step_err, Side::Outer) else {
+        let Some(ellipse) = ellipse::<false>(l, radius, camera, margin, step_err) else {
             return Silhouette::All;
         };
         ellipse
@@ -136,7 +136,7 @@ impl Silhouette {
         margin: Margin,
         step_err: f32,
     ) -> Option<Self> {
-        ellipse(l, radius, camera, margin, step_err, Side::Inner)
+        ellipse::<true>(l, radius, camera, margin, step_err)
     }
 
     /// The columns `x` (image coordinates, real) the silhouette reaches between rows
@@ -288,24 +288,15 @@ const TWO_M16: f64 = 1.0 / 65_536.0;
 const TWO_M17: f64 = 1.0 / 131_072.0;
 const TWO_M18: f64 = 1.0 / 262_144.0;
 
-/// Which way the margins move the sphere's radius.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Side {
-    /// Enlarged: every ray that can hit the sphere is inside.
-    Outer,
-    /// Shrunk: every ray inside hits it.
-    Inner,
-}
-
-/// The enlarged (or shrunk) silhouette as an ellipse, or `None` when it is not a
-/// bounded ellipse.
-fn ellipse(
+/// The enlarged silhouette (`INNER`: shrunk) as an ellipse, or `None` when it is not a
+/// bounded ellipse. The side is a const: a firmware that only culls links only the
+/// enlarged one.
+fn ellipse<const INNER: bool>(
     l: Vec3,
     radius: f32,
     camera: &Camera,
     margin: Margin,
     step_err: f32,
-    side: Side,
 ) -> Option<Silhouette> {
     let v64 = |v: Vec3| [f64::from(v.x), f64::from(v.y), f64::from(v.z)];
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -326,25 +317,22 @@ fn ellipse(
     }
     // Enlarge the sphere: the test's rounding, then the stepping's (or shrink it by
     // the same amounts: a miss needs the same error the other way).
-    let r_tot = match side {
-        Side::Outer => {
-            let r_eff = match margin {
-                Margin::Linear => r * (1.0 + TWO_M16) + l_len * TWO_M18,
-                Margin::Quadratic => libm::sqrt(r * r * (1.0 + TWO_M10) + l2 * TWO_M17),
-            };
-            r_eff + 2.0 * step_err * (1.0 + 1e-3) * l_len
+    let r_tot = if INNER {
+        let r_eff = match margin {
+            Margin::Linear => r * (1.0 - TWO_M16) - l_len * TWO_M18,
+            Margin::Quadratic => libm::sqrt((r * r * (1.0 - TWO_M10) - l2 * TWO_M17).max(0.0)),
+        };
+        let r_tot = r_eff - 2.0 * step_err * (1.0 + 1e-3) * l_len;
+        if !(r_tot > 0.0) {
+            return None;
         }
-        Side::Inner => {
-            let r_eff = match margin {
-                Margin::Linear => r * (1.0 - TWO_M16) - l_len * TWO_M18,
-                Margin::Quadratic => libm::sqrt((r * r * (1.0 - TWO_M10) - l2 * TWO_M17).max(0.0)),
-            };
-            let r_tot = r_eff - 2.0 * step_err * (1.0 + 1e-3) * l_len;
-            if !(r_tot > 0.0) {
-                return None;
-            }
-            r_tot
-        }
+        r_tot
+    } else {
+        let r_eff = match margin {
+            Margin::Linear => r * (1.0 + TWO_M16) + l_len * TWO_M18,
+            Margin::Quadratic => libm::sqrt(r * r * (1.0 + TWO_M10) + l2 * TWO_M17),
+        };
+        r_eff + 2.0 * step_err * (1.0 + 1e-3) * l_len
     };
     // A bounded ellipse needs the enlarged sphere strictly in front of the plane through
     // the eye parallel to the image (which also puts the eye outside it).

@@ -19,7 +19,9 @@
 //! Each image is rendered whole through the public API (`Render::draw` into the
 //! simulator's frame buffer, `Render::trace` for the mask), with the scene file's camera
 //! at the picture's size (same vertical field of view, the simulator's `--size`). The
-//! PNGs carry no time or text chunk: the same build writes the same bytes.
+//! PNGs carry no time or text chunk: the same build writes the same bytes. Prints how
+//! many pixels differ between the two renders of each pair and how many edge pixels
+//! the mask has (the README quotes them).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -34,8 +36,8 @@ use embedded_raytracer::{Camera, CameraParams, Render, Sampling, Scene};
 #[path = "common/standard.rs"]
 mod standard;
 
-/// The part of the 240×240 render shown enlarged: the red sphere's rim, the green one
-/// behind it and the blue one's edge.
+/// The part of the 240×240 render shown enlarged: the red sphere's rim against the
+/// cyan sphere and the background, and the blue sphere's edge.
 const CROP: Rectangle = Rectangle::new(Point::new(36, 50), Size::new(90, 90));
 
 /// Output pixels between the two halves of a pair.
@@ -79,8 +81,17 @@ impl Picture {
         }
     }
 
+    fn index(&self, p: Point) -> usize {
+        (p.y as u32 * self.size.width + p.x as u32) as usize
+    }
+
     fn get(&self, p: Point) -> Rgb888 {
-        self.pixels[(p.y as u32 * self.size.width + p.x as u32) as usize]
+        self.pixels[self.index(p)]
+    }
+
+    fn set(&mut self, p: Point, color: Rgb888) {
+        let k = self.index(p);
+        self.pixels[k] = color;
     }
 
     /// Draws `area` of `src` with its top-left at `at`, each pixel as a `scale × scale`
@@ -89,17 +100,25 @@ impl Picture {
         for p in area.points() {
             let color = src.get(p);
             let q = at + (p - area.top_left) * scale as i32;
-            for dy in 0..scale as i32 {
-                let row = (q.y + dy) as u32 * self.size.width;
-                for dx in 0..scale as i32 {
-                    self.pixels[(row + (q.x + dx) as u32) as usize] = color;
-                }
+            for d in Rectangle::new(Point::zero(), Size::new(scale, scale)).points() {
+                self.set(q + d, color);
             }
         }
     }
 
-    /// `area` of `left` and of `right`, ×`scale`, side by side with [`GAP`] between.
+    /// `area` of `left` and of `right`, ×`scale`, side by side with [`GAP`] between;
+    /// prints how many of the whole images' pixels differ.
     fn pair(left: &Picture, right: &Picture, area: Rectangle, scale: u32) -> Self {
+        let differ = left
+            .pixels
+            .iter()
+            .zip(&right.pixels)
+            .filter(|(a, b)| a != b)
+            .count();
+        println!(
+            "{differ} of {} pixels differ between Center and Adaptive(4)",
+            left.pixels.len()
+        );
         let half = area.size * scale;
         let mut out = Self::new(Size::new(2 * half.width + GAP, half.height), GAP_COLOR);
         out.blit(left, area, Point::zero(), scale);
@@ -136,17 +155,14 @@ fn resized(camera: &Camera, size: Size) -> Camera {
     .expect("the standard scenes' cameras are valid at the pictures' sizes")
 }
 
-/// `scene` drawn with `sampling` into a display of colour `C`.
-fn drawn<C, const N: usize, const L: usize, const P: usize, const D: usize>(
+/// `scene` drawn with `sampling` on an `Rgb565` display.
+fn rgb565<const N: usize, const L: usize, const P: usize, const D: usize>(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     sampling: Sampling,
-) -> SimulatorDisplay<C>
-where
-    C: PixelColor + From<Rgb888> + From<BinaryColor>,
-{
-    let mut display = SimulatorDisplay::<C>::new(camera.size());
-    let Ok(()) = Render::<N, C, L, P, D>::new(scene, camera)
+) -> SimulatorDisplay<Rgb565> {
+    let mut display = SimulatorDisplay::<Rgb565>::new(camera.size());
+    let Ok(()) = Render::<N, Rgb565, L, P, D>::new(scene, camera)
         .with_sampling(sampling)
         .draw(&mut display);
     display
@@ -187,12 +203,8 @@ fn run() -> Result<(), String> {
 
     // The 240×240 colour LCD.
     let camera = resized(&lab.camera, Size::new(240, 240));
-    let [center, smooth] = [Sampling::Center, adaptive].map(|s| {
-        Picture::of(
-            &drawn::<Rgb565, _, 0, 0, 0>(&lab.scene, &camera, s),
-            BinaryColorTheme::Default,
-        )
-    });
+    let [center, smooth] = [Sampling::Center, adaptive]
+        .map(|s| Picture::of(&rgb565(&lab.scene, &camera, s), BinaryColorTheme::Default));
     Picture::pair(&center, &smooth, CROP, 4).save(&out.join("aa-lab-240x240-rgb565.png"))?;
 
     // The edge pixels of the shadows scene over its dimmed centre-ray render.
@@ -208,13 +220,12 @@ fn run() -> Result<(), String> {
     > = Render::new(&shadows.scene, &shadows.camera);
     render.trace(|s| {
         let c = s.color;
-        mask.pixels[(s.pixel.y as u32 * mask.size.width + s.pixel.x as u32) as usize] =
-            Rgb888::new(c.r() / 4, c.g() / 4, c.b() / 4);
+        mask.set(s.pixel, Rgb888::new(c.r() / 4, c.g() / 4, c.b() / 4));
     });
     let mut edges = 0usize;
     render.with_sampling(adaptive).trace(|s| {
         if s.rays > 1 {
-            mask.pixels[(s.pixel.y as u32 * mask.size.width + s.pixel.x as u32) as usize] = Rgb888::WHITE;
+            mask.set(s.pixel, Rgb888::WHITE);
             edges += 1;
         }
     });

@@ -52,7 +52,7 @@ fn table<const N: usize, const L: usize, const P: usize, const D: usize>(
     out: &mut String,
     notes: &mut String,
 ) {
-    let quality = aa::measure(scene, camera, 2);
+    let quality = aa::measure(scene, camera, aa::REFERENCE_RAYS, 2);
     let (size, edge) = (quality.size, &quality.edge);
     let edges = edge.iter().filter(|&&e| e).count();
     for q in &quality.samplings {

@@ -21,7 +21,8 @@
 //! against its mean error over all pixels, in 8-bit levels, from the 16 × 16-ray
 //! box-filtered reference in linear light (`reference::aa`; the measurement of
 //! `aa_table`, `common/aa.rs`, so the errors are the README's anti-aliasing table's:
-//! scenes wider than 256 pixels at 256 wide).
+//! scenes wider than 256 pixels at 256 wide). `--quick` measures against a 4 × 4-ray
+//! reference instead (16 times cheaper; a smoke test, not the README's figures).
 //!
 //! The reference is the accuracy lab's independent `f64` renderer
 //! ([`embedded_raytracer::reference`]: the seed's camera and Lab #1 shading, the robust
@@ -327,7 +328,7 @@ fn plot(
         if let Some(area) = panels.get(5) {
             draw_growth(area, growth, &mut labels)?;
         }
-        // The sampling axis: cost against the error from the 16 x 16 reference, by time
+        // The sampling axis: cost against the error from the n x n reference, by time
         // and by rays; their legend under the methods' one.
         if let (Some(time), Some(legend), Some(rays), false) =
             (panels.get(18), panels.get(19), panels.get(20), sampled.is_empty())
@@ -343,7 +344,7 @@ fn plot(
                 sampled,
                 &mut labels,
             )?;
-            sampling_legend(legend, &mut labels)?;
+            sampling_legend(legend, sampled[0].reference_rays, &mut labels)?;
         }
         // Legend (marker positions relative to its panel, labels absolute).
         if let Some(legend) = panels.get(12) {
@@ -663,6 +664,8 @@ where
 /// One sampling choice on one scene (default method).
 struct SamplingPoint {
     scene: &'static str,
+    /// The reference's rays per pixel side.
+    reference_rays: u32,
     /// The image measured (the scene's, capped at the adaptive row buffer's width).
     size: Size,
     quality: aa::Quality,
@@ -676,17 +679,19 @@ fn sampling_cases<'a, const N: usize, const L: usize, const P: usize, const D: u
     name: &'static str,
     scene: &'a Scene<N, L, P, D>,
     camera: &Camera,
-    threads: usize,
+    reference_rays: u32,
     points: &mut Vec<SamplingPoint>,
     cases: &mut Vec<Box<dyn Fn() -> f64 + 'a>>,
 ) {
-    let measured = aa::measure(scene, camera, threads);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let measured = aa::measure(scene, camera, reference_rays, threads);
     let camera = aa::capped(camera);
     for mut quality in measured.samplings {
         quality.colors = Vec::new();
         let sampling = quality.sampling;
         points.push(SamplingPoint {
             scene: name,
+            reference_rays,
             size: measured.size,
             quality,
             ns: f64::NAN,
@@ -837,9 +842,11 @@ where
 }
 
 /// The sampling panels' legend (marker positions relative to its panel, labels
-/// absolute), below the methods' legend that runs into this panel's top.
+/// absolute), below the methods' legend that runs into this panel's top; `n` is the
+/// reference's rays per pixel side.
 fn sampling_legend<DB: DrawingBackend>(
     legend: &DrawingArea<DB, plotters::coord::Shift>,
+    n: u32,
     labels: &mut Vec<Label>,
 ) -> DrawResult<()>
 where
@@ -898,7 +905,7 @@ where
     item(
         labels,
         y,
-        "  16x16-ray reference, linear light".into(),
+        format!("  {n}x{n}-ray reference, linear light"),
         Rgb888::BLACK,
     );
     y += 20;
@@ -915,8 +922,9 @@ where
 
 /// The sampling axis's md section and csv block.
 fn write_sampling(md: &mut String, csv: &mut String, sampled: &[SamplingPoint]) -> std::fmt::Result {
+    let n = sampled.first().map_or(aa::REFERENCE_RAYS, |p| p.reference_rays);
     writeln!(md, "\n## Sampling: cost against error\n")?;
-    writeln!(md, "Every `Sampling` choice with the default method: host ns/pixel (timed like the methods above) and its ratio to `center` on the same scene, rays averaged per pixel, and the error against the 16 × 16-ray box-filtered reference in linear light (`reference::aa`) in 8-bit levels, the largest channel difference per pixel, over all pixels and over the pixels `adaptive:4` traced with the grid (the measurement of `cargo run --release --example aa_table`; scenes wider than 256 pixels, adaptive sampling's row buffer, at 256 wide). The chart's two panels at the bottom right plot the mean error against ns/pixel and against rays/pixel.\n")?;
+    writeln!(md, "Every `Sampling` choice with the default method: host ns/pixel (timed like the methods above) and its ratio to `center` on the same scene, rays averaged per pixel, and the error against the {n} × {n}-ray box-filtered reference in linear light (`reference::aa`) in 8-bit levels, the largest channel difference per pixel, over all pixels and over the pixels `adaptive:4` traced with the grid (the measurement of `cargo run --release --example aa_table`; scenes wider than 256 pixels, adaptive sampling's row buffer, at 256 wide). The chart's two panels at the bottom right plot the mean error against ns/pixel and against rays/pixel.\n")?;
     writeln!(md, "| scene | size | sampling | ns/pixel | × center | rays/pixel | mean error | max error | mean error, edge pixels |")?;
     writeln!(md, "|---|---|---|---:|---:|---:|---:|---:|---:|")?;
     writeln!(csv, "\nsampling_scene,width,height,sampling,ns_per_pixel,ratio_to_center,rays_per_pixel,mean_error,max_error,edge_mean_error,edge_max_error")?;
@@ -1158,9 +1166,9 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
 
-    // The sampling axis: errors against the 16 × 16 reference first, then interleaved
-    // timing rounds of every scene and sampling choice.
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    // The sampling axis: errors against the reference first, then interleaved timing
+    // rounds of every scene and sampling choice.
+    let reference_rays = if args.quick { 4 } else { aa::REFERENCE_RAYS };
     let feature_files: Vec<standard::FullSceneFile> = FEATURE_SCENES
         .iter()
         .map(|scene| standard::load_full(scene))
@@ -1172,7 +1180,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             scene,
             &file.scene,
             &file.camera,
-            threads,
+            reference_rays,
             &mut sampled,
             &mut sampled_cases,
         );
@@ -1182,7 +1190,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             scene,
             &file.scene,
             &file.camera,
-            threads,
+            reference_rays,
             &mut sampled,
             &mut sampled_cases,
         );

@@ -18,7 +18,8 @@ use embedded_raytracer::{Camera, Render, Sampling, Scene};
 /// (`sampling::ADAPTIVE_MAX_WIDTH`; a wider image samples every pixel).
 pub const MAX_WIDTH: u32 = embedded_raytracer::sampling::ADAPTIVE_MAX_WIDTH as u32;
 
-/// Rays per pixel side of the reference (`n × n` rays, box filter, linear light).
+/// Rays per pixel side of the reference (`n × n` rays, box filter, linear light): the
+/// README's figures.
 pub const REFERENCE_RAYS: u32 = 16;
 
 /// The camera at no more than [`MAX_WIDTH`] pixels wide (same vertical field of view
@@ -95,15 +96,17 @@ impl SceneQuality {
 }
 
 /// Traces every sampling choice of `scene` through `camera` [`capped`] and compares it
-/// with the [`REFERENCE_RAYS`]² reference (computed on `threads` threads; each pixel
-/// alone, so the result does not depend on the split).
+/// with the reference of `reference_rays`² rays per pixel ([`REFERENCE_RAYS`] for the
+/// README's figures; computed on `threads` threads, each pixel alone, so the result
+/// does not depend on the split).
 pub fn measure<const N: usize, const L: usize, const P: usize, const D: usize>(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
+    reference_rays: u32,
     threads: usize,
 ) -> SceneQuality {
     let camera = capped(camera);
-    let reference = supersampled(scene, &camera, REFERENCE_RAYS, threads);
+    let reference = supersampled(scene, &camera, reference_rays, threads);
     let (_, adaptive_rays) = traced(scene, &camera, Sampling::adaptive(4).unwrap());
     let edge: Vec<bool> = adaptive_rays.iter().map(|&r| r > 1).collect();
     let samplings = Sampling::ALL

@@ -9,25 +9,22 @@
 //! ```
 //!
 //! Edge pixels are the ones `Adaptive(4)` traced with the grid (`Sample::rays > 1`),
-//! the same set for every row of a scene. Scenes wider than 256 pixels (adaptive
+//! the same set for every row of a scene. The measurement is `common/aa.rs`'s, shared
+//! with the speed/accuracy chart's sampling panels. Scenes wider than 256 pixels (adaptive
 //! sampling's row buffer) are drawn at 256 pixels wide (same vertical field of view and
 //! aspect). The output is deterministic (the reference's threads split rows,
 //! each pixel computed alone).
 
 use std::fmt::Write as _;
 
-use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
-use embedded_graphics::prelude::*;
-use embedded_raytracer::reference::aa::supersampled;
-use embedded_raytracer::{Camera, Render, Sampling, Scene};
+use embedded_graphics::pixelcolor::RgbColor;
+use embedded_raytracer::{Camera, Sampling, Scene};
 
+#[path = "common/aa.rs"]
+mod aa;
 #[path = "common/standard.rs"]
 mod standard;
 use standard::{FEATURE_SCENES, SCENES};
-
-/// The largest image width the table renders at: adaptive sampling's row buffer
-/// (`sampling::ADAPTIVE_MAX_WIDTH`; a wider image samples every pixel).
-const MAX_WIDTH: u32 = embedded_raytracer::sampling::ADAPTIVE_MAX_WIDTH as u32;
 
 fn main() {
     let mut out = String::new();
@@ -48,43 +45,6 @@ fn main() {
     print!("{out}\n{notes}");
 }
 
-/// The camera at no more than [`MAX_WIDTH`] pixels wide.
-fn capped(camera: &Camera) -> Camera {
-    let size = camera.size();
-    if size.width <= MAX_WIDTH {
-        return *camera;
-    }
-    let mut p = *camera.params();
-    let height = (u64::from(size.height) * u64::from(MAX_WIDTH) / u64::from(size.width)) as u32;
-    p.size = Size::new(MAX_WIDTH, height.max(1));
-    Camera::from_params(p).expect("a smaller image of a valid camera is valid")
-}
-
-/// Colours and rays of every pixel, row-major.
-fn traced<const N: usize, const L: usize, const P: usize, const D: usize>(
-    scene: &Scene<N, L, P, D>,
-    camera: &Camera,
-    sampling: Sampling,
-) -> (Vec<Rgb888>, Vec<u32>) {
-    let (mut colors, mut rays) = (Vec::new(), Vec::new());
-    Render::<N, Rgb888, L, P, D>::new(scene, camera)
-        .with_sampling(sampling)
-        .trace(|s| {
-            colors.push(s.color);
-            rays.push(s.rays);
-        });
-    (colors, rays)
-}
-
-/// The largest channel difference.
-fn error(c: Rgb888, r: &[f64; 3]) -> f64 {
-    [c.r(), c.g(), c.b()]
-        .iter()
-        .zip(r)
-        .map(|(&a, &b)| (f64::from(a) - b).abs())
-        .fold(0.0, f64::max)
-}
-
 fn table<const N: usize, const L: usize, const P: usize, const D: usize>(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
@@ -92,46 +52,23 @@ fn table<const N: usize, const L: usize, const P: usize, const D: usize>(
     out: &mut String,
     notes: &mut String,
 ) {
-    let camera = capped(camera);
-    let size = camera.size();
-    let reference = supersampled(scene, &camera, 16, 2);
-    let (_, adaptive_rays) = traced(scene, &camera, Sampling::adaptive(4).unwrap());
-    let edge: Vec<bool> = adaptive_rays.iter().map(|&r| r > 1).collect();
+    let quality = aa::measure(scene, camera, aa::REFERENCE_RAYS, 2);
+    let (size, edge) = (quality.size, &quality.edge);
     let edges = edge.iter().filter(|&&e| e).count();
-    let mut grid4 = Vec::new();
-    let mut adaptive4 = Vec::new();
-    for sampling in Sampling::ALL {
-        let (colors, rays) = traced(scene, &camera, sampling);
-        let errors: Vec<f64> = colors.iter().zip(&reference).map(|(c, r)| error(*c, r)).collect();
-        let stats = |pick: &dyn Fn(usize) -> bool| {
-            let (mut sum, mut max, mut count) = (0.0, 0.0f64, 0usize);
-            for (k, e) in errors.iter().enumerate().filter(|(k, _)| pick(*k)) {
-                let _ = k;
-                sum += e;
-                max = max.max(*e);
-                count += 1;
-            }
-            (sum / count.max(1) as f64, max)
-        };
-        let (mean, max) = stats(&|_| true);
-        let (edge_mean, edge_max) = stats(&|k| edge[k]);
-        let per_pixel = rays.iter().map(|&r| f64::from(r)).sum::<f64>() / rays.len() as f64;
+    for q in &quality.samplings {
         let _ = writeln!(
             out,
-            "| {name} | {}×{} | {sampling} | {per_pixel:.2} | {mean:.2} | {max:.1} | {edge_mean:.2} | {edge_max:.1} |",
-            size.width, size.height
+            "| {name} | {}×{} | {} | {:.2} | {:.2} | {:.1} | {:.2} | {:.1} |",
+            size.width, size.height, q.sampling, q.rays_per_pixel, q.mean, q.max, q.edge_mean, q.edge_max
         );
-        if sampling == Sampling::grid(4).unwrap() {
-            grid4 = colors;
-        } else if sampling == Sampling::adaptive(4).unwrap() {
-            adaptive4 = colors;
-        }
     }
+    let grid4 = quality.colors(Sampling::grid(4).unwrap());
+    let adaptive4 = quality.colors(Sampling::adaptive(4).unwrap());
     // Adaptive(4) against Grid(4): pixels more than 2 levels apart, the largest and where.
     let w = size.width as usize;
     let diffs: Vec<u8> = grid4
         .iter()
-        .zip(&adaptive4)
+        .zip(adaptive4)
         .map(|(g, a)| {
             [
                 g.r().abs_diff(a.r()),

@@ -521,8 +521,8 @@ impl Rows for AdaptiveRows {
 /// silhouettes (Lab #1 on spheres): the edge pixels come from the silhouettes alone,
 /// per row, and no sample is shared between pixels (see [`SpanBands`]). A frame where
 /// that cannot be proven (a silhouette that is not a bounded ellipse, two spheres that
-/// touch) is drawn by [`AdaptiveRows`]' shared samples; `clip` is the render's own,
-/// and the frame is ringed for that case.
+/// touch, a fast square root) is drawn by [`AdaptiveRows`]' shared samples; `clip` is
+/// the render's own, and the frame is ringed for that case.
 #[derive(Clone, Copy)]
 pub(crate) struct SpanAdaptiveRows {
     pub n: u32,

@@ -28,7 +28,7 @@
 //! every sphere and plane (a row's spans hold for its centre line only).
 //!
 //! **Edge pixels** (`Adaptive`) of a Lab #1 scene (spheres only), from the silhouettes
-//! alone, per row ([`SpanAdaptiveRows`]): once per frame each sphere gets two ellipses,
+//! alone, per row (`SpanAdaptiveRows`): once per frame each sphere gets two ellipses,
 //! its silhouette enlarged and shrunk by the test's rounding margin and the larger of
 //! the stepping's and the sub-pixel rays' direction errors (`span.rs`); once per row,
 //! the columns whose sub-sample square `[i ± h] × [j ± h]`, `h = (n − 1)/(2n)`, reaches
@@ -45,7 +45,7 @@
 //! path keeps no row buffer: its cost is the centre row plus a few interval
 //! comparisons per row, and it has no width limit.
 //!
-//! **Edge pixels** of a scene with lights, planes or mirrors ([`AdaptiveRows`]),
+//! **Edge pixels** of a scene with lights, planes or mirrors (`AdaptiveRows`),
 //! conservatively:
 //! - *shared samples*: every centre ray is traced once, with an identity (what decides
 //!   its colour discontinuously: the object; in the features path also the checker
@@ -554,34 +554,31 @@ impl Ring {
     /// the outer one is out of reach.
     #[inline(always)]
     fn columns(&self, j: u32, h: f32, (f0, f1): (f32, f32)) -> Option<[u32; 4]> {
-        // Clamped first (the bounds are integers, so clamping and rounding commute),
-        // then rounded by conversion: the values are in [0, 2¹³].
-        let floor = |x: f32| x.max(f0).min(f1) as u32;
-        let ceil = |x: f32| {
-            let x = x.max(f0).min(f1);
-            let t = x as u32;
-            t + u32::from((t as f32) < x)
+        // The columns `⌈a⌉ ..= ⌊b⌋` of the frame, `None` if none: an interval that
+        // ends left of the frame or starts right of it is empty (clamping it first
+        // would make it the border column). Clamped, then rounded by conversion (the
+        // bounds are integers, so the two commute; the values are in [0, 2¹³]).
+        let columns = |a: f32, b: f32| -> Option<(u32, u32)> {
+            if !(b >= f0 && a < f1 && a <= b) {
+                return None;
+            }
+            let a = a.max(f0);
+            let t = a as u32;
+            let lo = t + u32::from((t as f32) < a);
+            let hi = (b.min(f1) as u32 + 1).min(f1 as u32);
+            (lo < hi).then_some((lo, hi))
         };
         let (x0, x1) = self.outer.band_reach(j, h, self.reach)?;
-        // [i − h, i + h] meets [x0, x1]: ⌈x0 − h⌉ ..= ⌊x1 + h⌋.
-        let lo = ceil(x0 - h);
-        let hi = (floor(x1 + h) + 1).min(f1 as u32);
-        if lo >= hi {
-            return None;
-        }
-        // [i − h, i + h] inside [x0, x1]: ⌈x0 + h⌉ ..= ⌊x1 − h⌋.
-        let (in_lo, in_hi) = match self.inner.and_then(|s| s.band_inside(j, h)) {
-            Some((x0, x1)) => {
-                let a = ceil(x0 + h).max(lo);
-                let z = (floor(x1 - h) + 1).min(hi);
-                if a < z {
-                    (a, z)
-                } else {
-                    (hi, hi)
-                }
-            }
-            None => (hi, hi),
-        };
+        // [i − h, i + h] meets [x0, x1]: i in [x0 − h, x1 + h].
+        let (lo, hi) = columns(x0 - h, x1 + h)?;
+        // [i − h, i + h] inside [x0, x1]: i in [x0 + h, x1 − h].
+        let (in_lo, in_hi) = self
+            .inner
+            .and_then(|s| s.band_inside(j, h))
+            .and_then(|(x0, x1)| columns(x0 + h, x1 - h))
+            .map(|(a, z)| (a.max(lo), z.min(hi)))
+            .filter(|(a, z)| a < z)
+            .unwrap_or((hi, hi));
         Some([lo, hi, in_lo, in_hi])
     }
 }
@@ -718,7 +715,8 @@ impl Rows for SpanAdaptiveRows {
 }
 
 /// How far (8-bit levels) the Lab #1 shade at a pixel's centre may be from the mean
-/// of its sub-samples before the pixel is an edge pixel (see [`shade_ring`]).
+/// of its sub-samples before the pixel is an edge pixel (the error model is in the
+/// source, at `shade_ring`).
 pub const SHADE_TOLERANCE: f32 = 1.5;
 
 /// Every sphere's [`SpanBands`] for the frame: silhouettes enlarged and shrunk by the
@@ -726,7 +724,8 @@ pub const SHADE_TOLERANCE: f32 = 1.5;
 /// error (`Stepping::Direct`'s bound covers the latter: module docs).
 ///
 /// `None` when the silhouettes alone cannot find the edges: a silhouette that is not
-/// a bounded ellipse, or two spheres closer than the sum of their radii plus
+/// a bounded ellipse (a sphere reaching the eye's plane, or behind the eye: it cannot
+/// be hit, but is not told apart here), or two spheres closer than the sum of their radii plus
 /// `g = 2⁻¹⁰·(|L₁| + |L₂|)` (where both can be hit, the one in front can change inside
 /// a pixel). Between two other spheres a separating plane keeps the same one in front
 /// along every ray through both (the eye is on one side of it), with a gap no `t`'s
@@ -842,10 +841,12 @@ fn row_bands<'s, const N: usize, T: TestStrategy, Sh: Shader>(
         let Some([lo, hi, in_lo, in_hi]) = sil.silhouette.columns(j, half, frame_columns) else {
             continue;
         };
+        // The shading ring's columns within the sphere's (its cap sphere can look
+        // wider than the sphere when the eye is near).
         let shade = sil
             .shade
             .and_then(|ring| ring.columns(j, 0.0, frame_columns))
-            .unwrap_or([hi, hi, hi, hi]);
+            .map_or([hi; 4], |c| c.map(|x| x.clamp(lo, hi)));
         // Never fails: one per sphere.
         let _ = bands.push(Band {
             index,
@@ -967,6 +968,9 @@ impl<'s, const N: usize, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: 
         let rays = (self.steps.n * self.steps.n) as u32;
         core::iter::from_fn(move || {
             let i = self.i;
+            if i >= self.end {
+                return None;
+            }
             let mut sample = self.row.next()?;
             self.i += 1;
             if self.is_edge(i) {

@@ -275,8 +275,9 @@ fn a_sphere_smaller_than_a_pixel_is_never_missed() {
 }
 
 /// `Adaptive(4)` against `Grid(4)` on the standard scenes, each at its own size or,
-/// if wider than adaptive sampling's row buffer (256 columns; a wider image is all
-/// grid), at 256 columns with the same vertical field of view and aspect: within 2
+/// if wider than the shared samples' row buffer (256 columns; there a wider image is
+/// all grid), at 256 columns with the same vertical field of view and aspect, as the
+/// README's table: within 2
 /// levels (every channel) on at least 99.9 % of the pixels, and some pixels not
 /// sampled by the grid (the rule is exercised).
 #[test]
@@ -523,6 +524,70 @@ fn a_centre_ray_pixel_has_no_silhouette_in_it() {
         }
     }
     // Both kinds occur: the rule is exercised on both sides.
+    assert!(
+        checked > 100_000 && edge > 1_000,
+        "{checked} samples checked, {edge} edge pixels"
+    );
+}
+
+/// The silhouettes' rule at the image's border, where the frame's clamp meets a rim
+/// within a sub-sample of column 0 (or the last column): a sphere swept across each
+/// border, every one-ray pixel of the border columns checked sample by sample.
+#[test]
+fn a_rim_at_the_image_border_is_an_edge() {
+    let camera = Camera::new(
+        Vec3::new(0.0, 0.0, 10.0),
+        Vec3::ZERO,
+        Vec3::new(0.0, 1.0, 0.0),
+        0.8,
+        Size::new(64, 48),
+    )
+    .unwrap();
+    let (w, n) = (64u32, 4u32);
+    let o = |k: u32| (2 * k + 1) as f32 / (2 * n) as f32 - 0.5;
+    let (mut checked, mut edge) = (0usize, 0usize);
+    for step in 0..200 {
+        let cx = 7.0 + step as f32 * 0.005;
+        for side in [-1.0f32, 1.0] {
+            let mut scene = Scene::<1>::new(Rgb888::BLACK);
+            scene
+                .push(Sphere::new(Vec3::new(side * cx, 0.0, 0.0), 2.0, Rgb888::WHITE))
+                .unwrap();
+            let render =
+                Render::<1, Rgb888>::new(&scene, &camera).with_sampling(Sampling::adaptive(n).unwrap());
+            render.trace(|s| {
+                let (i, j) = (s.pixel.x as u32, s.pixel.y as u32);
+                if i != 0 && i != w - 1 {
+                    return;
+                }
+                if s.rays > 1 {
+                    edge += 1;
+                    return;
+                }
+                let d = camera.direction(i, j);
+                let du = camera.direction(1, j) - camera.direction(0, j);
+                let dv = camera.direction(i, j + 1) - d;
+                for (a, b) in (0..n).flat_map(|a| (0..n).map(move |b| (a, b))) {
+                    let sub = d + du * o(a) + dv * o(b);
+                    let got = scene
+                        .closest_hit(
+                            camera.eye(),
+                            sub,
+                            Method::DEFAULT.sphere_test,
+                            Method::DEFAULT.sqrt,
+                        )
+                        .map(|h| h.index);
+                    assert_eq!(
+                        got,
+                        s.hit.map(|h| h.index),
+                        "cx {}: pixel ({i}, {j}), sample ({a}, {b})",
+                        side * cx
+                    );
+                    checked += 1;
+                }
+            });
+        }
+    }
     assert!(
         checked > 100_000 && edge > 1_000,
         "{checked} samples checked, {edge} edge pixels"

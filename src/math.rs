@@ -102,6 +102,30 @@ pub fn sqrt_fast(x: f32) -> f32 {
     micromath::F32(x).sqrt().0
 }
 
+/// `f32::max` inline: the larger of `a` and `b`, the other one where one is NaN.
+/// The Cortex-M4's FPU has no `VMAXNM`, so `f32::max` is a call to `fmaxf`; per-row
+/// code that clamps many values uses this instead.
+#[must_use]
+#[inline(always)]
+pub(crate) fn max(a: f32, b: f32) -> f32 {
+    if a < b || a.is_nan() {
+        b
+    } else {
+        a
+    }
+}
+
+/// `f32::min` inline (as `max`): the smaller, the other one where one is NaN.
+#[must_use]
+#[inline(always)]
+pub(crate) fn min(a: f32, b: f32) -> f32 {
+    if b < a || a.is_nan() {
+        b
+    } else {
+        a
+    }
+}
+
 /// `tan(x)` for the camera's half field of view, `x ∈ [0, π/2)`, once per frame.
 ///
 /// Why not libm's `tanf`: its general argument reduction (`rem_pio2_large`) and the

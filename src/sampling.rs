@@ -562,10 +562,10 @@ impl Ring {
             if !(b >= f0 && a < f1 && a <= b) {
                 return None;
             }
-            let a = a.max(f0);
+            let a = crate::math::max(a, f0);
             let t = a as u32;
             let lo = t + u32::from((t as f32) < a);
-            let hi = (b.min(f1) as u32 + 1).min(f1 as u32);
+            let hi = (crate::math::min(b, f1) as u32 + 1).min(f1 as u32);
             (lo < hi).then_some((lo, hi))
         };
         let (x0, x1) = self.outer.band_reach(j, h, self.reach)?;
@@ -605,43 +605,61 @@ struct Band<'s, T: TestStrategy, Sh: Shader> {
     edges: [(u32, u32); 4],
 }
 
-impl<T: TestStrategy, Sh: Shader> Band<'_, T, Sh> {
-    /// The sphere's edge columns in this row.
-    #[inline(always)]
-    fn edges(&self) -> [(u32, u32); 4] {
-        self.edges
+/// A row's edge columns as runs `[lo, hi)` in increasing order, disjoint and not
+/// touching: the union of the bands' edge intervals (`edges`, four per band, empty
+/// ones as `(x, x)`), sorted and merged once per row so that each pixel pays one
+/// comparison. Built in `runs`; returns how many of its intervals (flattened, from
+/// the first) are runs.
+fn edge_runs<const N: usize>(
+    edges: impl Iterator<Item = [(u32, u32); 4]>,
+    runs: &mut Vec<[(u32, u32); 4], N>,
+) -> usize {
+    runs.clear();
+    for e in edges {
+        // Never fails: one per band, at most one band per sphere.
+        let _ = runs.push(e);
     }
-}
-
-/// The first run `[lo, hi)` of edge columns at or after column `from` (the union of
-/// the bands' edge intervals, merged where they touch); `(u32::MAX, u32::MAX)` if none.
-fn next_edge<T: TestStrategy, Sh: Shader>(bands: &[Band<'_, T, Sh>], from: u32) -> (u32, u32) {
-    let mut lo = u32::MAX;
-    for b in bands {
-        for (a, z) in b.edges() {
-            if a < z && z > from {
-                lo = lo.min(a.max(from));
+    let all = runs.as_flattened_mut();
+    // The non-empty intervals to the front, sorted by their start: an insertion sort
+    // (a few dozen at most, mostly in order already). Slots before `k` are free once
+    // read, so the sorted prefix (`m ≤ k`) may grow into them.
+    let mut m: usize = 0;
+    for k in 0..all.len() {
+        let Some(&e) = all.get(k) else { break };
+        if e.0 >= e.1 {
+            continue;
+        }
+        let mut p = m;
+        while let Some(&before) = p.checked_sub(1).and_then(|q| all.get(q)) {
+            if before.0 <= e.0 {
+                break;
+            }
+            if let Some(slot) = all.get_mut(p) {
+                *slot = before;
+            }
+            p -= 1;
+        }
+        if let Some(slot) = all.get_mut(p) {
+            *slot = e;
+        }
+        m += 1;
+    }
+    // Merge where they overlap or touch.
+    let mut out: usize = 0;
+    for k in 0..m {
+        let Some(&(a, z)) = all.get(k) else { break };
+        if let Some(last) = out.checked_sub(1).and_then(|q| all.get_mut(q)) {
+            if a <= last.1 {
+                last.1 = last.1.max(z);
+                continue;
             }
         }
-    }
-    if lo == u32::MAX {
-        return (lo, lo);
-    }
-    let mut hi = lo;
-    loop {
-        let mut grown = false;
-        for b in bands {
-            for (a, z) in b.edges() {
-                if a < z && a <= hi && z > hi {
-                    hi = z;
-                    grown = true;
-                }
-            }
+        if let Some(slot) = all.get_mut(out) {
+            *slot = (a, z);
         }
-        if !grown {
-            return (lo, hi);
-        }
+        out += 1;
     }
+    out
 }
 
 impl Rows for SpanAdaptiveRows {
@@ -688,6 +706,7 @@ impl Rows for SpanAdaptiveRows {
         let mut stepper = S::new(frame.camera);
         let mut active: Vec<_, N> = Vec::new();
         let mut bands: Vec<Band<'s, T, Sh>, N> = Vec::new();
+        let mut runs: Vec<[(u32, u32); 4], N> = Vec::new();
         for j in rj0..rj1 {
             let row_step = stepper.start_row(j, frame.i0);
             let (mut lo, mut hi) = scanline::activate(frame, &mut stepper, j, &mut active);
@@ -699,15 +718,19 @@ impl Rows for SpanAdaptiveRows {
                 row.next_color();
             }
             row_bands(frame, &sils, j, half, &mut bands);
-            let span_row = SpanRow::<N, S, T, Q, Sh, X> {
+            let count = edge_runs(bands.iter().map(|b| b.edges), &mut runs);
+            let mut span_row = SpanRow::<N, S, T, Q, Sh, X> {
                 row,
                 bands: &bands,
                 steps: &steps,
-                edge: next_edge(&bands, ri0),
+                runs: runs.as_flattened().get(..count).unwrap_or_default(),
+                next: 0,
+                edge: (u32::MAX, u32::MAX),
                 i: ri0,
                 end: ri1,
                 j,
             };
+            span_row.next_run(ri0);
             sink.row(row_area(frame, ri0, ri1, j), span_row)?;
         }
         Ok(())
@@ -738,7 +761,8 @@ fn span_bands<const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
 ) -> Option<Vec<SpanBands, N>> {
     use crate::span::Silhouette;
     let camera = frame.camera;
-    let err = S::error_bound(camera).max(<crate::stepping::DirectStep as Stepper>::error_bound(camera));
+    let step_err = S::error_bound(camera);
+    let err = step_err.max(<crate::stepping::DirectStep as Stepper>::error_bound(camera));
     let mut out: Vec<SpanBands, N> = Vec::new();
     for (k, fs) in frame.spheres.iter().enumerate() {
         let g = &fs.geom;
@@ -752,7 +776,7 @@ fn span_bands<const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
         });
         // The culling ellipse where it was built for the same error (the direct
         // stepping), saving its f64 work.
-        let outer = if fs.silhouette != Silhouette::All && S::error_bound(camera) >= err {
+        let outer = if fs.silhouette != Silhouette::All && step_err >= err {
             fs.silhouette
         } else {
             Silhouette::new(g.l, r, camera, T::MARGIN, err)
@@ -893,7 +917,10 @@ struct SpanRow<'a, 'r, 's, const N: usize, S: Stepper, T: TestStrategy, Q, Sh: S
     row: RowPixels<'r, 's, S, T, Q, Sh, X>,
     bands: &'a [Band<'s, T, Sh>],
     steps: &'a SubSteps,
-    /// The current or next run of edge columns.
+    /// The row's runs of edge columns ([`edge_runs`]), the index of the next one not
+    /// yet taken, and the current or next one.
+    runs: &'a [(u32, u32)],
+    next: usize,
     edge: (u32, u32),
     i: u32,
     end: u32,
@@ -911,9 +938,23 @@ impl<'s, const N: usize, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: 
             return false;
         }
         if i >= self.edge.1 {
-            self.edge = next_edge(self.bands, i);
+            self.next_run(i);
         }
         i >= self.edge.0
+    }
+
+    /// Takes the first run still reaching past column `from` (`(u32::MAX, u32::MAX)`
+    /// if none), starting at `from` at the earliest.
+    #[inline(always)]
+    fn next_run(&mut self, from: u32) {
+        while let Some(&(lo, hi)) = self.runs.get(self.next) {
+            self.next += 1;
+            if hi > from {
+                self.edge = (lo.max(from), hi);
+                return;
+            }
+        }
+        self.edge = (u32::MAX, u32::MAX);
     }
 
     /// Column `i`'s `Grid(n)` average over the spheres whose band holds it.
@@ -951,6 +992,31 @@ impl<'s, const N: usize, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: 
         // every column of its span.
         let center = self.row.next_color();
         Some(if self.is_edge(i) { self.averaged(i) } else { center })
+    }
+
+    /// The same pixels as [`Self::next`], a run at a time: the centre-ray columns up
+    /// to the next edge run without its per-pixel test, then the run's averages.
+    #[inline(always)]
+    fn fold<B, F: FnMut(B, Rgb888) -> B>(mut self, init: B, mut f: F) -> B {
+        let mut acc = init;
+        while self.i < self.end {
+            let stop = self.edge.0.min(self.end);
+            if self.i < stop {
+                acc = centre_run(&mut self.row, stop - self.i, acc, &mut f);
+                self.i = stop;
+            }
+            let stop = self.edge.1.min(self.end);
+            while self.i < stop {
+                let i = self.i;
+                self.i += 1;
+                // The centre ray too: a test's row state expects every column.
+                let _ = self.row.next_color();
+                acc = f(acc, self.averaged(i));
+            }
+            let i = self.i;
+            self.next_run(i);
+        }
+        acc
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
@@ -1015,6 +1081,22 @@ impl<'s, const N: usize, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: 
             after,
         }
     }
+}
+
+/// `n` centre-ray pixels of `row` into `f`, out of line: the row loop's state stays
+/// in registers here rather than beside the edge pixels' calls.
+#[inline(never)]
+fn centre_run<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>, B>(
+    row: &mut RowPixels<'_, 's, S, T, Q, Sh, X>,
+    n: u32,
+    init: B,
+    f: &mut impl FnMut(B, Rgb888) -> B,
+) -> B {
+    let mut acc = init;
+    for _ in 0..n {
+        acc = f(acc, row.next_color());
+    }
+    acc
 }
 
 /// The render's own columns and rows (its `clip`) inside the frame's traced, ringed
@@ -1287,8 +1369,50 @@ impl<'s, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T, Sh>> PixelR
 
 #[cfg(test)]
 mod tests {
-    use super::{decode, encode};
+    use super::{decode, edge_runs, encode};
+    use heapless::Vec;
     use std::println;
+
+    /// The merged runs hold exactly the columns of the union of the intervals, in
+    /// increasing order, disjoint and not touching (empty intervals, touching ones,
+    /// nested ones and reversed order included).
+    #[test]
+    fn edge_runs_are_the_union_of_the_intervals() {
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = |n: u32| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 33) as u32 % n
+        };
+        for _ in 0..2000 {
+            let bands = 1 + next(6) as usize;
+            let mut edges = std::vec::Vec::new();
+            for _ in 0..bands {
+                let mut four = [(0, 0); 4];
+                for e in &mut four {
+                    let a = next(40);
+                    // About a quarter empty, some reversed (empty too).
+                    *e = (a, a + next(12));
+                    if next(4) == 0 {
+                        *e = (e.1, e.0);
+                    }
+                }
+                edges.push(four);
+            }
+            let mut runs: Vec<[(u32, u32); 4], 6> = Vec::new();
+            let count = edge_runs(edges.iter().copied(), &mut runs);
+            let got = &runs.as_flattened()[..count];
+            for w in got.windows(2) {
+                assert!(w[0].1 < w[1].0, "runs {got:?} overlap or touch");
+            }
+            for x in 0..60 {
+                let want = edges.iter().flatten().any(|&(a, z)| a <= x && x < z);
+                let have = got.iter().any(|&(a, z)| a <= x && x < z);
+                assert_eq!(have, want, "column {x}: runs {got:?} of {edges:?}");
+            }
+        }
+    }
 
     fn srgb_to_linear(c: f64) -> f64 {
         if c <= 0.04045 {

@@ -31,6 +31,7 @@
 //! The same fallback catches any non-finite coefficient.
 
 use crate::camera::Camera;
+use crate::math::{max, min};
 use crate::vec3::Vec3;
 
 /// How much a test's rounding can widen its hit set beyond the true silhouette.
@@ -167,15 +168,15 @@ impl Silhouette {
                 // dy ± h, and cut to the ellipse's own rows (half-height widened by a
                 // relative 2⁻¹⁶ for its f32 rounding).
                 let slack = (dy.abs() + h) * (1.0 / 1_048_576.0);
-                let a = (dy - h - slack).max(-half_height);
-                let b = (dy + h + slack).min(half_height);
+                let a = max(dy - h - slack, -half_height);
+                let b = min(dy + h + slack, half_height);
                 if !(a <= b) {
                     return None;
                 }
                 let edge = |y: f32, sign: f32| {
-                    let y = y.max(a).min(b);
+                    let y = min(max(y, a), b);
                     let hw2 = (h0 - q * (y * y)) + h0 * (1.0 / 65536.0);
-                    let hw = crate::math::sqrt_exact(hw2.max(0.0));
+                    let hw = crate::math::sqrt_exact(max(hw2, 0.0));
                     let shift = kx * y;
                     let pad = (xc0.abs() + shift.abs() + hw) * (1.0 / 1_048_576.0) + 1.0 / 256.0;
                     xc0 + shift + sign * (hw + pad)
@@ -232,8 +233,8 @@ impl Silhouette {
                     let hw = crate::math::sqrt_exact(hw2);
                     let shift = kx * y;
                     let pad = (xc0.abs() + shift.abs() + hw) * (1.0 / 1_048_576.0) + 1.0 / 256.0;
-                    lo = lo.max(xc0 + shift - hw + pad);
-                    hi = hi.min(xc0 + shift + hw - pad);
+                    lo = max(lo, xc0 + shift - hw + pad);
+                    hi = min(hi, xc0 + shift + hw - pad);
                 }
                 (lo <= hi).then_some((lo, hi))
             }

@@ -73,6 +73,16 @@ fn same_everywhere<const N: usize, const L: usize, const P: usize, const D: usiz
     for (k, c) in frame.buf.iter().enumerate() {
         assert_eq!(*c, Some(whole[k]), "{what}: drawn pixel {k}");
     }
+    // Into a sink that folds each row's colours (`PixelHash`, as the firmware
+    // measures): the same sequence as traced one pixel at a time.
+    let mut folded = embedded_raytracer::hash::PixelHash::new(size);
+    render.draw(&mut folded).unwrap();
+    let mut one_by_one = embedded_raytracer::hash::PixelHash::new(size);
+    for (j, row) in whole.chunks(size.width as usize).enumerate() {
+        let area = Rectangle::new(Point::new(0, j as i32), Size::new(size.width, 1));
+        one_by_one.fill_contiguous(&area, row.iter().copied()).unwrap();
+    }
+    assert_eq!(folded.hash(), one_by_one.hash(), "{what}: folded rows");
     // Clipped and offset: a clip cutting into the image on every side.
     let offset = Point::new(3, -2);
     let clip = Rectangle::new(

@@ -64,21 +64,29 @@ fn srgb_tables() {
     let decode: Vec<String> = (0..256)
         .map(|k| format!("{}", (linear(f64::from(k) / 255.0) * 65535.0).round() as u32))
         .collect();
-    let thresholds: Vec<String> = (0..255)
-        .map(|k| {
-            format!(
-                "{}",
-                (linear((f64::from(k) + 0.5) / 255.0) * 16.0 * 65535.0).round() as u32
-            )
-        })
+    let thresholds: Vec<u32> = (0..255)
+        .map(|k| (linear((f64::from(k) + 0.5) / 255.0) * 16.0 * 65535.0).round() as u32)
         .collect();
+    // Where the search for a linear value x starts: the number of thresholds below
+    // x's bucket, buckets of 2⁸ below 2¹⁶ (where the levels are densest) and of 2¹⁰
+    // above.
+    let below = |v: u32| thresholds.iter().filter(|&&t| t < v).count().to_string();
+    let low: Vec<String> = (0..256u32).map(|b| below(b << 8)).collect();
+    let high: Vec<String> = (0..1024u32).map(|b| below(b << 10)).collect();
+    let list = |v: &[u32]| v.iter().map(u32::to_string).collect::<Vec<_>>().join(", ");
     let text = format!(
         "/// 8-bit sRGB level to linear light, `round(65535·L)`.\n\
          pub(crate) const SRGB_TO_LINEAR: [u16; 256] = [{}];\n\
          /// Linear light (×16·65535) where the sRGB encoding is `k + ½` levels.\n\
-         pub(crate) const LINEAR_THRESHOLDS: [u32; 255] = [{}];\n",
+         pub(crate) const LINEAR_THRESHOLDS: [u32; 255] = [{}];\n\
+         /// The thresholds below `b·2⁸`, for `b·2⁸ < 2¹⁶`.\n\
+         pub(crate) const LEVELS_BELOW_LOW: [u8; 256] = [{}];\n\
+         /// The thresholds below `b·2¹⁰`, for `b·2¹⁰ < 2²⁰`.\n\
+         pub(crate) const LEVELS_BELOW_HIGH: [u8; 1024] = [{}];\n",
         decode.join(", "),
-        thresholds.join(", ")
+        list(&thresholds),
+        low.join(", "),
+        high.join(", ")
     );
     let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     std::fs::write(out.join("srgb_tables.rs"), text).expect("write srgb_tables.rs to OUT_DIR");

@@ -1261,12 +1261,26 @@ fn decode(v: u8) -> u32 {
     u32::from(SRGB_TO_LINEAR.get(usize::from(v)).copied().unwrap_or(0))
 }
 
-/// The level nearest (in the encoded scale) to the mean of `count` (≤ 16) decoded
+/// The level nearest (in the encoded scale) to the mean of `count` (1…16) decoded
 /// values summing to `sum`: the number of thresholds at or below the mean.
+///
+/// Exact, no search: an integer threshold `t` is at or below `16·sum/count` exactly
+/// when it is at or below its floor `x`; a table gives the thresholds below `x`'s
+/// bucket (2⁸ wide under 2¹⁶, 2¹⁰ above: never more than one threshold per bucket,
+/// `encode_steps_at_most_once_per_bucket`), so one comparison finishes it. Equal to
+/// the binary search over the thresholds for every `x` (test
+/// `encode_equals_the_search_for_every_mean`).
 #[inline(always)]
 fn encode(sum: u32, count: u32) -> u8 {
-    let scaled = sum * 16;
-    LINEAR_THRESHOLDS.partition_point(|&t| t * count <= scaled) as u8
+    let x = sum * 16 / count.max(1);
+    let start = if x < 1 << 16 {
+        LEVELS_BELOW_LOW.get((x >> 8) as usize)
+    } else {
+        LEVELS_BELOW_HIGH.get((x >> 10) as usize)
+    };
+    let k = start.copied().unwrap_or(255);
+    let next = LINEAR_THRESHOLDS.get(usize::from(k)).copied().unwrap_or(u32::MAX);
+    k + u8::from(next <= x)
 }
 
 /// One row of `Grid`/`Adaptive` pixels, computed as the sink pulls them. `stored`:
@@ -1431,6 +1445,48 @@ mod tests {
     }
 
     /// A constant colour averages to itself, for every level and count.
+    #[test]
+    fn encode_steps_at_most_once_per_bucket() {
+        use super::{LEVELS_BELOW_HIGH, LEVELS_BELOW_LOW, LINEAR_THRESHOLDS};
+        let bucket = |x: u32| if x < 1 << 16 { x >> 8 } else { (1 << 8) + (x >> 10) };
+        for w in LINEAR_THRESHOLDS.windows(2) {
+            assert_ne!(
+                bucket(w[0]),
+                bucket(w[1]),
+                "thresholds {} and {} share a bucket",
+                w[0],
+                w[1]
+            );
+        }
+        // The tables count the thresholds below each bucket's start.
+        for (b, &k) in LEVELS_BELOW_LOW.iter().enumerate() {
+            assert_eq!(
+                usize::from(k),
+                LINEAR_THRESHOLDS.partition_point(|&t| t < (b as u32) << 8)
+            );
+        }
+        for (b, &k) in LEVELS_BELOW_HIGH.iter().enumerate() {
+            assert_eq!(
+                usize::from(k),
+                LINEAR_THRESHOLDS.partition_point(|&t| t < (b as u32) << 10)
+            );
+        }
+    }
+
+    #[test]
+    fn encode_equals_the_search_for_every_mean() {
+        use super::LINEAR_THRESHOLDS;
+        for count in 1..=16u32 {
+            // Every sum of `count` decoded values (each ≤ 65535), step 1 for the
+            // largest grid and a prime step otherwise.
+            let step = if count == 16 { 1 } else { 7 };
+            for sum in (0..=count * 65535).step_by(step) {
+                let want = LINEAR_THRESHOLDS.partition_point(|&t| t * count <= sum * 16);
+                assert_eq!(usize::from(encode(sum, count)), want, "sum {sum}, count {count}");
+            }
+        }
+    }
+
     #[test]
     fn constant_round_trips() {
         for n in [4u32, 9, 16] {

@@ -11,8 +11,8 @@
 //! tracer rounds once; it is decoded to linear light by a table (IEC 61966-2-1, built
 //! by `build.rs`: `round(65535·L)`), the `n²` values are summed in integers, and the
 //! sum is encoded by comparing it with the 255 linear thresholds where the encoded
-//! value is exactly `k + ½` levels: rounding to nearest, once, with no `powf` in the
-//! pixel loop. Decoding rounded samples instead of averaging the unrounded ones moves
+//! value is exactly `k + ½` levels (a bucket table picks the one threshold to compare
+//! with): rounding to nearest, once, with no `powf` in the pixel loop. Decoding rounded samples instead of averaging the unrounded ones moves
 //! the result by at most one level (the unit test `rounded_samples_within_one_level`
 //! measures it over random sample sets: see its output).
 //!

@@ -40,8 +40,9 @@
 //! dropped. A second ring per sphere marks pixels where the centre's Lab #1 shade is
 //! not a fair stand-in for the mean (the `0.3` floor's kink, and steep shading on small
 //! spheres; [`SHADE_TOLERANCE`]) — a heuristic the quality tables measure. A frame the
-//! silhouettes cannot decide — a sphere not seen as a bounded ellipse, two spheres
-//! closer than a small gap, a fast square root — uses the shared samples below. This
+//! silhouettes cannot decide — a sphere reaching the eye's plane (one wholly behind
+//! the eye cannot be hit and is left out), two spheres closer than a small gap, a fast
+//! square root — uses the shared samples below. This
 //! path keeps no row buffer: its cost is the centre row plus a few interval
 //! comparisons per row, and it has no width limit.
 //!
@@ -587,7 +588,8 @@ impl Ring {
 /// and where they all do (the silhouette's edge), and the ring where the centre's
 /// Lab #1 shade may be more than [`SHADE_TOLERANCE`] from the pixel's mean.
 struct SpanBands {
-    silhouette: Ring,
+    /// `None`: a sphere wholly behind the eye, which no ray hits.
+    silhouette: Option<Ring>,
     shade: Option<Ring>,
 }
 
@@ -746,9 +748,11 @@ pub const SHADE_TOLERANCE: f32 = 1.5;
 /// test's margin and the larger of the stepping's and the sub-pixel rays' direction
 /// error (`Stepping::Direct`'s bound covers the latter: module docs).
 ///
+/// A sphere wholly behind the eye ([`behind_the_eye`]) has no ring: no ray hits it.
+///
 /// `None` when the silhouettes alone cannot find the edges: a silhouette that is not
-/// a bounded ellipse (a sphere reaching the eye's plane, or behind the eye: it cannot
-/// be hit, but is not told apart here), or two spheres closer than the sum of their radii plus
+/// a bounded ellipse (a sphere reaching the eye's plane), or two spheres (neither
+/// behind the eye) closer than the sum of their radii plus
 /// `g = 2⁻¹⁰·(|L₁| + |L₂|)` (where both can be hit, the one in front can change inside
 /// a pixel). Between two other spheres a separating plane keeps the same one in front
 /// along every ray through both (the eye is on one side of it), with a gap no `t`'s
@@ -764,16 +768,31 @@ fn span_bands<const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
     let step_err = S::error_bound(camera);
     let err = step_err.max(<crate::stepping::DirectStep as Stepper>::error_bound(camera));
     let mut out: Vec<SpanBands, N> = Vec::new();
+    let w = camera.w();
     for (k, fs) in frame.spheres.iter().enumerate() {
         let g = &fs.geom;
         let r = crate::math::sqrt_exact(g.r2);
+        if behind_the_eye(g, w) {
+            // Never fails: one per sphere.
+            let _ = out.push(SpanBands {
+                silhouette: None,
+                shade: None,
+            });
+            continue;
+        }
         // Each pair once. The f32 distance's rounding (≲ 2⁻²²·(|L₁| + |L₂|)) is far
         // inside the gap asked for; NaN counts as touching.
-        let touching = frame.spheres.iter().skip(k + 1).any(|other| {
-            let o = &other.geom;
-            let gap = crate::math::sqrt_exact((g.l - o.l).dot(g.l - o.l)) - r - crate::math::sqrt_exact(o.r2);
-            !(gap > (crate::math::sqrt_exact(g.l2) + crate::math::sqrt_exact(o.l2)) * (1.0 / 1024.0))
-        });
+        let touching = frame
+            .spheres
+            .iter()
+            .skip(k + 1)
+            .filter(|o| !behind_the_eye(&o.geom, w))
+            .any(|other| {
+                let o = &other.geom;
+                let gap =
+                    crate::math::sqrt_exact((g.l - o.l).dot(g.l - o.l)) - r - crate::math::sqrt_exact(o.r2);
+                !(gap > (crate::math::sqrt_exact(g.l2) + crate::math::sqrt_exact(o.l2)) * (1.0 / 1024.0))
+            });
         // The culling ellipse where it was built for the same error (the direct
         // stepping), saving its f64 work.
         let outer = if fs.silhouette != Silhouette::All && step_err >= err {
@@ -786,11 +805,40 @@ fn span_bands<const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
         }
         // Never fails: one per sphere.
         let _ = out.push(SpanBands {
-            silhouette: Ring::new(outer, Silhouette::inner(g.l, r, camera, T::MARGIN, err)),
+            silhouette: Some(Ring::new(
+                outer,
+                Silhouette::inner(g.l, r, camera, T::MARGIN, err),
+            )),
             shade: shade_ring(g.l, r, camera, outer),
         });
     }
     Some(out)
+}
+
+/// Whether the sphere `g` lies wholly behind the eye, its nearest point at least
+/// `2⁻⁸·(|L| + r)` behind the plane through the eye parallel to the image (`w` the
+/// view direction): `L·w + r ≤ −2⁻⁸·(|L| + r)`, in f32 (`f32` rounding of `L·w`,
+/// `|L|` and `r` is below `2⁻²⁰·(|L| + r)`, so a sphere passes only if it is behind
+/// by more than `2⁻⁹·(|L| + r)`; NaN fails).
+///
+/// No ray of the frame hits it, in any test: every primary and sub-pixel direction
+/// has `d·w` equal to the focal distance (`du`, `dv` ⟂ `w`; the stepping's error is
+/// far smaller), so a point at `t > 0` is in front of that plane and the exact roots
+/// are negative. The computed ones keep their sign. With `m = 2⁻⁹·(|L| + r)`, the
+/// eye's power is `c = |L|² − r² ≥ m·(|L| + r)` (`|L| ≥ r + m`) and, where the ray's
+/// line meets the sphere, the roots' mean `b/a` (`b = L·d`, `a = d·d`) is behind by
+/// `m/(d·w)`, so `−b ≥ m·|d|`: each is `2¹³` or more times its `f32` rounding (a
+/// forward-differenced `b`, `2⁻²⁰` relative after 16 steps, too). With `b < 0` and
+/// `c > 0` every test's roots are negative: `q/a` and `c/q` with `q = b − √disc < 0`
+/// (robust, forward differences), `(b ± √disc)/a` with `√disc` below `|b|` by a
+/// relative `c/(2|L|²) ≥ 2⁻¹⁰` (the slides' algebraic form), and the geometric test
+/// stops at `L·d < 0`. The tests in `tests/sampling.rs` place spheres just past the
+/// margin.
+#[inline]
+fn behind_the_eye(g: &crate::intersect::SphereGeom, w: crate::vec3::Vec3) -> bool {
+    let r = crate::math::sqrt_exact(g.r2);
+    let l = crate::math::sqrt_exact(g.l2);
+    g.l.dot(w) + r <= -(l + r) * (1.0 / 256.0)
 }
 
 /// Where the centre's Lab #1 shade may be more than [`SHADE_TOLERANCE`] levels from
@@ -862,7 +910,10 @@ fn row_bands<'s, const N: usize, T: TestStrategy, Sh: Shader>(
     bands.clear();
     let frame_columns = (frame.i0 as f32, frame.i1 as f32);
     for (index, (sphere, sil)) in frame.spheres.iter().zip(sils).enumerate() {
-        let Some([lo, hi, in_lo, in_hi]) = sil.silhouette.columns(j, half, frame_columns) else {
+        let Some([lo, hi, in_lo, in_hi]) = sil
+            .silhouette
+            .and_then(|ring| ring.columns(j, half, frame_columns))
+        else {
             continue;
         };
         // The shading ring's columns within the sphere's (its cap sphere can look

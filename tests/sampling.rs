@@ -603,3 +603,76 @@ fn a_rim_at_the_image_border_is_an_edge() {
         "{checked} samples checked, {edge} edge pixels"
     );
 }
+
+/// Spheres wholly behind the eye, placed just past `behind_the_eye`'s margin (their
+/// nearest point `1.05 · 2⁻⁸·(|L| + r)` behind the plane through the eye), beside and
+/// straight behind it: no ray hits them in any method or sampling, and they leave the
+/// adaptive rule as it is (the same edge pixels: the frame does not fall back to the
+/// shared samples).
+#[test]
+fn spheres_behind_the_eye_change_no_pixel_and_no_edge() {
+    let mut rng = Rng(0xBE_41D);
+    let mut compared = 0usize;
+    for round in 0..6 {
+        let eye = rng.vec(3.0) + Vec3::new(0.0, 0.0, 9.0);
+        let camera = Camera::new(
+            eye,
+            Vec3::ZERO,
+            Vec3::new(0.0, 1.0, 0.0),
+            rng.range(0.5, 1.2),
+            Size::new(48, 36),
+        )
+        .unwrap();
+        let w = (Vec3::ZERO - eye).try_normalize().unwrap();
+        let mut front = Scene::<6>::new(Rgb888::BLACK);
+        let mut both = Scene::<10>::new(Rgb888::BLACK);
+        let mut placed: Vec<(Vec3, f32)> = Vec::new();
+        while placed.len() < 6 {
+            let (c, r) = (rng.vec(2.5), rng.range(0.05, 1.0));
+            if placed.iter().all(|&(o, s)| (c - o).length() > r + s + 0.05) {
+                placed.push((c, r));
+                let s = Sphere::new(c, r, Rgb888::new(200, 120, 50));
+                front.push(s).unwrap();
+                both.push(s).unwrap();
+            }
+        }
+        for k in 0..4 {
+            let r = rng.range(0.1, 3.0);
+            // Straight behind, then further and further to the side (up to beside the
+            // eye), the nearest point just past the margin.
+            let side = Vec3::new(1.0, 0.0, 0.0).cross(w).try_normalize().unwrap() * (k as f32 * 2.0 * r);
+            let mut depth = r;
+            for _ in 0..4 {
+                let l = (w * -depth + side).length();
+                depth = r + 1.05 * (l + r) / 256.0;
+            }
+            both.push(Sphere::new(eye - w * depth + side, r, Rgb888::new(255, 255, 255)))
+                .unwrap();
+        }
+        let methods: Vec<Method> = if round == 0 {
+            Method::ALL.to_vec()
+        } else {
+            vec![Method::ALL[round * 5 % Method::ALL.len()], Method::DEFAULT]
+        };
+        for method in methods {
+            for sampling in [
+                Sampling::Center,
+                Sampling::grid(4).unwrap(),
+                Sampling::adaptive(4).unwrap(),
+            ] {
+                let (mut without, mut with) = (Vec::new(), Vec::new());
+                Render::<6, Rgb888>::new(&front, &camera)
+                    .with_method(method)
+                    .with_sampling(sampling)
+                    .trace(|s| without.push((s.pixel, s.color, s.rays)));
+                Render::<10, Rgb888>::new(&both, &camera)
+                    .with_method(method)
+                    .with_sampling(sampling)
+                    .trace(|s| with.push((s.pixel, s.color, s.rays)));
+                assert_eq!(with, without, "round {round}: {method} {sampling}");
+                compared += with.len();
+            }
+        }
+    }
+    assert!(compared > 100_000, "{compared} pixels compared");
+}

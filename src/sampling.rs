@@ -912,6 +912,7 @@ fn row_bands<'s, const N: usize, T: TestStrategy, Sh: Shader>(
     for (index, (sphere, sil)) in frame.spheres.iter().zip(sils).enumerate() {
         let Some([lo, hi, in_lo, in_hi]) = sil
             .silhouette
+            .as_ref()
             .and_then(|ring| ring.columns(j, half, frame_columns))
         else {
             continue;
@@ -920,6 +921,7 @@ fn row_bands<'s, const N: usize, T: TestStrategy, Sh: Shader>(
         // wider than the sphere when the eye is near).
         let shade = sil
             .shade
+            .as_ref()
             .and_then(|ring| ring.columns(j, 0.0, frame_columns))
             .map_or([hi; 4], |c| c.map(|x| x.clamp(lo, hi)));
         // Never fails: one per sphere.

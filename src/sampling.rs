@@ -12,9 +12,10 @@
 //! by `build.rs`: `round(65535·L)`), the `n²` values are summed in integers, and the
 //! sum is encoded by comparing it with the 255 linear thresholds where the encoded
 //! value is exactly `k + ½` levels (a bucket table picks the one threshold to compare
-//! with): rounding to nearest, once, with no `powf` in the pixel loop. Decoding rounded samples instead of averaging the unrounded ones moves
-//! the result by at most one level (the unit test `rounded_samples_within_one_level`
-//! measures it over random sample sets: see its output).
+//! with): rounding to nearest, once, with no `powf` in the pixel loop. Decoding
+//! rounded samples instead of averaging the unrounded ones moves the result by at
+//! most one level (the unit test `rounded_samples_within_one_level` measures it over
+//! random sample sets: see its output).
 //!
 //! **Sub-pixel directions** are formed directly from the camera's per-frame steps
 //! (`F` the upper-left pixel's direction, `du`, `dv` the column and row steps), for
@@ -42,9 +43,9 @@
 //! spheres; [`SHADE_TOLERANCE`]) — a heuristic the quality tables measure. A frame the
 //! silhouettes cannot decide — a sphere reaching the eye's plane (one wholly behind
 //! the eye cannot be hit and is left out), two spheres closer than a small gap, a fast
-//! square root — uses the shared samples below. This
-//! path keeps no row buffer: its cost is the centre row plus a few interval
-//! comparisons per row, and it has no width limit.
+//! square root — uses the shared samples below. This path keeps no row buffer: its
+//! cost is the centre row plus a few interval comparisons per row, and it has no
+//! width limit.
 //!
 //! **Edge pixels** of a scene with lights, planes or mirrors (`AdaptiveRows`),
 //! conservatively:

@@ -822,7 +822,9 @@ fn span_bands<const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
 /// `|L|` and `r` is below `2⁻²⁰·(|L| + r)`, so a sphere passes only if it is behind
 /// by more than `2⁻⁹·(|L| + r)`; NaN fails).
 ///
-/// No ray of the frame hits it, in any test: every primary and sub-pixel direction
+/// No ray of the frame hits it, in any test with the exact square root (the only
+/// root this rule runs with: a fast root's 6 % can lift the slides' algebraic `√disc`
+/// above `|b|`, and frames with it fall back): every primary and sub-pixel direction
 /// has `d·w` equal to the focal distance (`du`, `dv` ⟂ `w`; the stepping's error is
 /// far smaller), so a point at `t > 0` is in front of that plane and the exact roots
 /// are negative. The computed ones keep their sign. With `m = 2⁻⁹·(|L| + r)`, the
@@ -833,8 +835,10 @@ fn span_bands<const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
 /// `c > 0` every test's roots are negative: `q/a` and `c/q` with `q = b − √disc < 0`
 /// (robust, forward differences), `(b ± √disc)/a` with `√disc` below `|b|` by a
 /// relative `c/(2|L|²) ≥ 2⁻¹⁰` (the slides' algebraic form), and the geometric test
-/// stops at `L·d < 0`. The tests in `tests/sampling.rs` place spheres just past the
-/// margin.
+/// stops at `L·d < 0`. The premise that the directions keep `d·w > 0` is the
+/// stepping's error bound (below 10⁻² for any silhouette to be built at all). The
+/// tests in `tests/sampling.rs` place spheres just past the margin, and one crossing
+/// the eye's plane (not left out).
 #[inline]
 fn behind_the_eye(g: &crate::intersect::SphereGeom, w: crate::vec3::Vec3) -> bool {
     let r = crate::math::sqrt_exact(g.r2);

@@ -464,6 +464,41 @@ fn wide_images_draw_the_same_pixels_whatever_the_clip() {
     }
 }
 
+/// The methods with the exact square root (the silhouettes' rule runs with no other).
+fn exact_root_methods() -> Vec<Method> {
+    Method::ALL
+        .into_iter()
+        .filter(|m| m.sqrt == embedded_raytracer::Sqrt::Exact)
+        .collect()
+}
+
+/// A camera about 9 units up the z axis looking at the origin, its eye and vertical
+/// field of view drawn from `rng` (in that order).
+fn random_camera(rng: &mut Rng, size: Size) -> Camera {
+    let eye = rng.vec(3.0) + Vec3::new(0.0, 0.0, 9.0);
+    Camera::new(
+        eye,
+        Vec3::ZERO,
+        Vec3::new(0.0, 1.0, 0.0),
+        rng.range(0.5, 1.2),
+        size,
+    )
+    .unwrap()
+}
+
+/// `count` random spheres near the origin (centre, radius), none touching another: a
+/// clear gap of 0.05 to every sphere placed before.
+fn apart_spheres(rng: &mut Rng, count: usize) -> Vec<(Vec3, f32)> {
+    let mut placed: Vec<(Vec3, f32)> = Vec::new();
+    while placed.len() < count {
+        let (c, r) = (rng.vec(2.5), rng.range(0.05, 1.0));
+        if placed.iter().all(|&(o, s)| (c - o).length() > r + s + 0.05) {
+            placed.push((c, r));
+        }
+    }
+    placed
+}
+
 /// On a Lab #1 scene the adaptive rule takes its edge pixels from the silhouettes: a
 /// pixel drawn with its centre ray alone has every one of its `Grid(n)` sub-samples on
 /// the sphere its centre hits (or on none), for every `n` and every method with the
@@ -473,35 +508,15 @@ fn wide_images_draw_the_same_pixels_whatever_the_clip() {
 #[test]
 fn a_centre_ray_pixel_has_no_silhouette_in_it() {
     let mut rng = Rng(0x51_1E7);
-    let methods: Vec<Method> = Method::ALL
-        .into_iter()
-        .filter(|m| m.sqrt == embedded_raytracer::Sqrt::Exact)
-        .collect();
+    let methods = exact_root_methods();
     let (mut checked, mut edge) = (0usize, 0usize);
     for round in 0..12 {
-        let camera = Camera::new(
-            rng.vec(3.0) + Vec3::new(0.0, 0.0, 9.0),
-            Vec3::ZERO,
-            Vec3::new(0.0, 1.0, 0.0),
-            rng.range(0.5, 1.2),
-            Size::new(64, 48),
-        )
-        .unwrap();
+        let camera = random_camera(&mut rng, Size::new(64, 48));
         let mut scene = Scene::<8>::new(Rgb888::BLACK);
-        let mut placed: Vec<(Vec3, f32)> = Vec::new();
-        while placed.len() < 8 {
-            let (c, r) = (rng.vec(2.5), rng.range(0.05, 1.0));
-            // Not touching: a clear gap to every sphere placed.
-            if placed.iter().all(|&(o, s)| (c - o).length() > r + s + 0.05) {
-                placed.push((c, r));
-                scene
-                    .push(Sphere::new(
-                        c,
-                        r,
-                        Rgb888::new(200, 100 + 10 * placed.len() as u8, 50),
-                    ))
-                    .unwrap();
-            }
+        for (k, (c, r)) in apart_spheres(&mut rng, 8).into_iter().enumerate() {
+            scene
+                .push(Sphere::new(c, r, Rgb888::new(200, 110 + 10 * k as u8, 50)))
+                .unwrap();
         }
         let method = methods[round % methods.len()];
         for n in 2..=4u32 {
@@ -613,29 +628,18 @@ fn a_rim_at_the_image_border_is_an_edge() {
 #[test]
 fn spheres_behind_the_eye_change_no_pixel_and_no_edge() {
     let mut rng = Rng(0xBE_41D);
+    let methods = exact_root_methods();
     let mut compared = 0usize;
     for round in 0..4 {
-        let eye = rng.vec(3.0) + Vec3::new(0.0, 0.0, 9.0);
-        let camera = Camera::new(
-            eye,
-            Vec3::ZERO,
-            Vec3::new(0.0, 1.0, 0.0),
-            rng.range(0.5, 1.2),
-            Size::new(48, 36),
-        )
-        .unwrap();
+        let camera = random_camera(&mut rng, Size::new(48, 36));
+        let eye = camera.eye();
         let w = (Vec3::ZERO - eye).try_normalize().unwrap();
         let mut front = Scene::<6>::new(Rgb888::BLACK);
         let mut both = Scene::<10>::new(Rgb888::BLACK);
-        let mut placed: Vec<(Vec3, f32)> = Vec::new();
-        while placed.len() < 6 {
-            let (c, r) = (rng.vec(2.5), rng.range(0.05, 1.0));
-            if placed.iter().all(|&(o, s)| (c - o).length() > r + s + 0.05) {
-                placed.push((c, r));
-                let s = Sphere::new(c, r, Rgb888::new(200, 120, 50));
-                front.push(s).unwrap();
-                both.push(s).unwrap();
-            }
+        for (c, r) in apart_spheres(&mut rng, 6) {
+            let s = Sphere::new(c, r, Rgb888::new(200, 120, 50));
+            front.push(s).unwrap();
+            both.push(s).unwrap();
         }
         for k in 0..4 {
             let r = rng.range(0.1, 3.0);
@@ -650,11 +654,7 @@ fn spheres_behind_the_eye_change_no_pixel_and_no_edge() {
             both.push(Sphere::new(eye - w * depth + side, r, Rgb888::new(255, 255, 255)))
                 .unwrap();
         }
-        let methods: Vec<Method> = Method::ALL
-            .into_iter()
-            .filter(|m| m.sqrt == embedded_raytracer::Sqrt::Exact)
-            .collect();
-        for method in methods {
+        for &method in &methods {
             for sampling in [
                 Sampling::Center,
                 Sampling::grid(4).unwrap(),

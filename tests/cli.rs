@@ -32,10 +32,39 @@ fn run(args: &[&str]) -> Output {
         .unwrap()
 }
 
-fn scratch(name: &str) -> PathBuf {
+/// A fresh directory for one test, removed when the test passes (kept when it fails,
+/// for a look at what the CLI wrote).
+struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            eprintln!("kept {}", self.0.display());
+        } else {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+}
+
+fn scratch(name: &str) -> Scratch {
     let dir = std::env::temp_dir().join(format!("embedded-raytracer-cli-{}-{name}", std::process::id()));
+    // A directory left by an earlier run with the same process id starts empty.
+    let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    dir
+    Scratch(dir)
 }
 
 /// PNG width and height from the IHDR chunk, and the colour type / bit depth.
@@ -223,7 +252,7 @@ fn is_png(bytes: &[u8]) -> bool {
 }
 
 /// A fresh directory holding `s.toml`, a small good scene.
-fn scene_dir(name: &str) -> PathBuf {
+fn scene_dir(name: &str) -> Scratch {
     let dir = scratch(name);
     std::fs::write(dir.join("s.toml"), GOOD).unwrap();
     dir

@@ -118,8 +118,10 @@ pub(crate) struct IntSphere {
     /// The object colour's channels.
     rgb: [u8; 3],
     /// Where on the image its rays can hit it (the `f32` silhouette, enlarged to cover
-    /// the quantisation's 1/16 pixel).
+    /// the quantisation's 1/16 pixel), and the rows `[j0, j1)` outside which it has no
+    /// span ([`Silhouette::rows`]: a row skips the sphere without soft float).
     silhouette: Silhouette,
+    rows: (u32, u32),
 }
 
 /// The integer kernel's per-frame constants. Not generic over the scene's capacity:
@@ -437,6 +439,7 @@ fn plan(
             dd: 2 * i128::from(a2) * i128::from(s_col * s_col),
             rgb: [s.color.r(), s.color.g(), s.color.b()],
             silhouette,
+            rows: silhouette.rows(camera.size().height),
         });
     }
     Some(Plan {
@@ -471,7 +474,137 @@ pub(crate) fn isqrt32(mut v: u32) -> u32 {
 /// back, for `v < 2³²⁺²ʰ`. Error bound: `0 ≤ √v − isqrt(v, h) < 2^(h+1)`.
 #[inline(always)]
 pub(crate) fn isqrt(v: u128, h: u32) -> u64 {
-    u64::from(isqrt32((v >> (2 * h)) as u32)) << h
+    shl_u64(isqrt32(shr_u128_low(v, 2 * h)), h)
+}
+
+// Shifts of 64- and 128-bit integers by a distance known only at run time, from
+// 32-bit words: on the Cortex-M0 the `>>`/`<<` operators are library calls there
+// (`__aeabi_lasr`, `__aeabi_llsr`, `__aeabi_llsl`), four of them per hit pixel. Each
+// is exact: the same bits as the operator.
+
+/// `x >> s` (arithmetic), `s < 64`.
+#[inline(always)]
+pub(crate) fn sar64(x: i64, s: u32) -> i64 {
+    let (lo, hi) = (x as u32, (x >> 32) as i32);
+    let (lo, hi) = if s >= 32 {
+        ((hi >> (s & 31)) as u32, hi >> 31)
+    } else if s == 0 {
+        (lo, hi)
+    } else {
+        ((lo >> s) | ((hi as u32) << (32 - s)), hi >> s)
+    };
+    (i64::from(hi) << 32) | i64::from(lo)
+}
+
+/// `(v >> s) as u32`, `s < 128`.
+#[inline(always)]
+pub(crate) fn shr_u128_low(v: u128, s: u32) -> u32 {
+    let word = |k: u32| -> u32 {
+        match k {
+            0 => v as u32,
+            1 => (v >> 32) as u32,
+            2 => (v >> 64) as u32,
+            3 => (v >> 96) as u32,
+            _ => 0,
+        }
+    };
+    let (k, r) = (s / 32, s % 32);
+    if r == 0 {
+        word(k)
+    } else {
+        (word(k) >> r) | (word(k + 1) << (32 - r))
+    }
+}
+
+/// `u64::from(x) << s`, `s < 64`.
+#[inline(always)]
+pub(crate) fn shl_u64(x: u32, s: u32) -> u64 {
+    let (lo, hi) = if s >= 32 {
+        (0, x << (s & 31))
+    } else if s == 0 {
+        (x, 0)
+    } else {
+        (x << s, x >> (32 - s))
+    };
+    (u64::from(hi) << 32) | u64::from(lo)
+}
+
+/// `x·y` for an `x` that fits in 32 bits (the shade's `a >> p`, `T >> p`), from four
+/// 16-bit products: the Cortex-M0's `MULS` keeps the low 32 bits of a product, and an
+/// `i64` multiply is a library call there (`__aeabi_lmul`, a full 64×64-bit product).
+/// Exact: `x = x₁·2¹⁶ + x₀` with `x₁` signed, `x₀ < 2¹⁶` (likewise `y`); each partial
+/// product is below 2³¹ in magnitude. Any other `x` is multiplied as `i64` (wrapping, as a release build's `*`).
+#[inline(always)]
+pub(crate) fn mul_wide(x: i64, y: i32) -> i64 {
+    let Ok(x) = i32::try_from(x) else {
+        return x.wrapping_mul(i64::from(y));
+    };
+    let (x1, x0) = (x >> 16, x & 0xffff);
+    let (y1, y0) = (y >> 16, y & 0xffff);
+    let high = i64::from(x1 * y1) << 32;
+    let mid = (i64::from(x1 * y0) + i64::from(x0 * y1)) << 16;
+    high + mid + i64::from((x0 as u32) * (y0 as u32))
+}
+
+/// Whether the target has no divide instruction: ARMv6-M (Cortex-M0, M0+), told
+/// apart by its missing compare-and-swap atomics (ARMv7-M and ARMv8-M Baseline have
+/// both a divider and compare-and-swap). There [`div_q16`] replaces the `/`.
+const NO_DIVIDER: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+
+/// `R[k] = ⌊2²³/(k + 257)⌋`, the reciprocals of [`div_q16`] (`< 2¹⁵`): a lower bound
+/// of `2²⁹/D` for every `D` in `[(k + 256)·2⁶, (k + 257)·2⁶)`.
+// Evaluated at compile time: an index out of range would fail the build.
+#[allow(clippy::indexing_slicing)]
+const RECIPROCALS: [u16; 256] = {
+    let mut r = [0u16; 256];
+    let mut k = 0;
+    while k < 256 {
+        r[k] = ((1u32 << 23) / (k as u32 + 257)) as u16;
+        k += 1;
+    }
+    r
+};
+
+/// `⌊n·2¹⁶/d⌋` for `n ≤ d`, `1 ≤ d < 2¹⁵`, exactly, without a divide instruction
+/// (the Cortex-M0's `__aeabi_uidiv` is a loop of ≈ 100 instructions): two 32-bit
+/// multiplies by a table reciprocal, then at most two corrections.
+///
+/// Why it is exact: `d` and `n` are doubled until `D = d·2ᵉ ≥ 2¹⁴` (the quotient is
+/// unchanged; `m = n·2ᵉ ≤ D < 2¹⁵`). With `R ≤ 2²⁹/D` from the table,
+/// `q₀ = ⌊m·R/2¹³⌋ ≤ Q = m·2¹⁶/D` and, `R ≥ (2²⁹/D)·256/257 − 1`, `Q − q₀ ≤ 260`
+/// (`Q ≤ 2¹⁶`, `m < 2¹⁵`), so the remainder `r = m·2¹⁶ − q₀·D < 261·D < 2²⁴`. Then
+/// `q₁ = ⌊⌊r/2⁷⌋·R/2²²⌋ ≤ r/D` and `r/D − q₁ < 2.03`: at most two subtractions of `D`
+/// remain, done by the loop, which only ever counts up to the true quotient (every
+/// estimate is a lower bound). No product reaches 2³² (`m·R < 2³⁰`,
+/// `⌊r/2⁷⌋·R < 2³¹`). Outside its range (`d ≥ 2¹⁵`, which the kernel's shifts rule out) it
+/// divides. Test: `div_q16_is_exact` (every `d`, the extreme and spread `n`; every
+/// `(n, d)` in the ignored, release-mode `div_q16_is_exact_everywhere`).
+#[inline(always)]
+pub(crate) fn div_q16(n: u32, d: u32) -> u32 {
+    if d == 0 || d >= 1 << 15 || n > d {
+        return (n << 16).checked_div(d).unwrap_or(0);
+    }
+    let (mut m, mut dd) = (n, d);
+    while dd < 1 << 14 {
+        dd <<= 1;
+        m <<= 1;
+    }
+    // dd in [2¹⁴, 2¹⁵): the index is (dd >> 6) − 256 in [0, 256).
+    // (A missing entry, impossible here, would leave the whole quotient to the loop.)
+    let inv = RECIPROCALS
+        .get(((dd >> 6) & 255) as usize)
+        .copied()
+        .map_or(0, u32::from);
+    let q0 = (m * inv) >> 13;
+    let mut r = (m << 16) - q0 * dd;
+    let q1 = ((r >> 7) * inv) >> 22;
+    r -= q1 * dd;
+    let mut q = q0 + q1;
+    while r >= dd {
+        r -= dd;
+        q += 1;
+    }
+    q
 }
 
 /// `n·(−w)` in Q16 from `num = ℓz·a − F·T` and `den = a·ρ > 0` (both `≥ 0` and
@@ -486,12 +619,16 @@ pub(crate) fn nz_q16(num: i64, den: i64, q: u32) -> u32 {
     if num >= den {
         return 1 << 16;
     }
-    let (n, d) = ((num >> q) as u32, (den >> q) as u32);
+    let (n, d) = (sar64(num, q) as u32, sar64(den, q) as u32);
     if d == 0 {
         return 0;
     }
-    // n < d < 2¹⁵: n·2¹⁶ < 2³¹.
-    (n << 16) / d
+    // n ≤ d < 2¹⁵: n·2¹⁶ < 2³¹.
+    if NO_DIVIDER {
+        div_q16(n, d)
+    } else {
+        (n << 16) / d
+    }
 }
 
 /// Lab #1's `clamp(n_z, 0.3, 1)` in Q16 (`0.3·2¹⁶ = 19660.8`, taken as 19661) and the
@@ -578,6 +715,9 @@ fn activate<'s>(
     let (mut lo_all, mut hi_all) = (frame.i1, frame.i0);
     let s = i128::from(2i32 << frame.k);
     for sp in frame.spheres.iter() {
+        if j < sp.rows.0 || j >= sp.rows.1 {
+            continue;
+        }
         let Some((lo, hi)) = sp.silhouette.row_span(j, 0, width) else {
             continue;
         };
@@ -674,9 +814,9 @@ impl<'c> IntRow<'_, '_, 'c> {
             Some((sp, t)) => {
                 let p = self.frame.p;
                 // a and T shifted by p: a >> p < 2³¹, products < 2⁵⁷.
-                let a = self.a >> p;
-                let num = i64::from(sp.lz) * a - i64::from(self.frame.f) * (t >> p);
-                shade(sp.rgb, nz_q16(num, a * i64::from(sp.rho), u32::from(sp.q)))
+                let a = sar64(self.a, p);
+                let num = mul_wide(a, sp.lz) - mul_wide(sar64(t, p), self.frame.f);
+                shade(sp.rgb, nz_q16(num, mul_wide(a, sp.rho), u32::from(sp.q)))
             }
             None => self.frame.background,
         };
@@ -784,6 +924,105 @@ impl Iterator for IntSamples<'_, '_, '_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `div_q16(n, d) = ⌊n·2¹⁶/d⌋` for every divisor, the numerators at the ends and
+    /// spread over the range, every numerator for divisors at the normalisation's and
+    /// the table's boundaries; and outside the range (it divides there).
+    #[test]
+    fn div_q16_is_exact() {
+        let check = |n: u32, d: u32| assert_eq!(div_q16(n, d), (n << 16) / d, "{n}/{d}");
+        for d in 1..1u32 << 15 {
+            for n in [0, 1, d / 3, d / 2, d.saturating_sub(2), d - 1, d] {
+                check(n, d);
+            }
+            for k in 1..16 {
+                check(d * k / 16, d);
+            }
+        }
+        for d in [
+            1, 2, 3, 63, 64, 65, 127, 128, 16_383, 16_384, 16_385, 16_447, 16_448, 32_703, 32_704, 32_767,
+        ] {
+            for n in 0..=d {
+                check(n, d);
+            }
+        }
+        assert_eq!(div_q16(5, 0), 0);
+        assert_eq!(div_q16(40_000, 40_000), 1 << 16);
+        assert_eq!(div_q16(3, 1 << 15), (3 << 16) >> 15);
+    }
+
+    /// Every `(n, d)` of [`div_q16`]'s range: 2²⁹ pairs, seconds in release mode
+    /// (`cargo test --release --lib -- --ignored div_q16`, run by `.ci/run`).
+    #[test]
+    #[ignore = "exhaustive: run in release mode"]
+    fn div_q16_is_exact_everywhere() {
+        for d in 1..1u32 << 15 {
+            for n in 0..=d {
+                assert_eq!(div_q16(n, d), (n << 16) / d, "{n}/{d}");
+            }
+        }
+    }
+
+    /// `mul_wide` equals the `i64` product for 32-bit `x` of every sign and size
+    /// (the 16-bit halves' extremes) and for wider `x`.
+    #[test]
+    fn mul_wide_equals_the_product() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut values = std::vec![0i64, 1, -1, 0xffff, 0x1_0000, -0x1_0000, -0x8000, 0x7fff];
+        values.extend([
+            i64::from(i32::MAX),
+            i64::from(i32::MIN),
+            i64::from(i32::MAX) + 1,
+            i64::MIN,
+            i64::MAX,
+        ]);
+        for _ in 0..2_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            values.push((x as i64) >> (x % 40));
+        }
+        for &a in &values {
+            for &b in &values {
+                let b = b as i32;
+                assert_eq!(mul_wide(a, b), a.wrapping_mul(i64::from(b)), "{a}·{b}");
+            }
+        }
+    }
+
+    /// The word-wise shifts equal the operators, at every distance, on values with
+    /// every bit pattern class (zero, all ones, sign bit, random).
+    #[test]
+    fn word_shifts_equal_the_operators() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut values = std::vec![
+            0u64,
+            1,
+            u64::MAX,
+            1 << 63,
+            (1 << 63) - 1,
+            0x8000_0001,
+            0xffff_ffff
+        ];
+        for _ in 0..200 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            values.push(x);
+        }
+        for &v in &values {
+            for s in 0..64 {
+                assert_eq!(sar64(v as i64, s), (v as i64) >> s, "{v:#x} >> {s}");
+                assert_eq!(shl_u64(v as u32, s), u64::from(v as u32) << s, "{v:#x} << {s}");
+            }
+            for &w in &values {
+                let wide = (u128::from(v) << 64) | u128::from(w);
+                for s in 0..128 {
+                    assert_eq!(shr_u128_low(wide, s), (wide >> s) as u32, "{wide:#x} >> {s}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn isqrt32_is_exact() {

@@ -241,6 +241,62 @@ impl Silhouette {
         }
     }
 
+    /// Row `j`'s offset `dy` from the centre row and the squared half-width of the
+    /// ellipse's cut there, with its slack ([`Self::row_span`]).
+    #[inline(always)]
+    fn row_cut(j: u32, y0i: f32, y0f: f32, q: f32, h0: f32) -> (f32, f32) {
+        // Cut the ellipse with the scanline through the row's pixel centres.
+        // `j − y0i` is exact (integers below 2²⁴), so dy has one rounding.
+        let dy = (j as f32 - y0i) - y0f;
+        // Slack 2⁻¹⁶·h0 covers the f32 rounding of h0 − q·dy² (≤ 3 ulp of
+        // max(h0, q·dy²), and rows with q·dy² ≫ h0 are far outside anyway).
+        (dy, (h0 - q * (dy * dy)) + h0 * (1.0 / 65536.0))
+    }
+
+    /// The rows `[j0, j1)` of `0..height` outside which [`Self::row_span`] is `None`
+    /// (every row for `All` and for coefficients that are not finite with `q > 0`),
+    /// found once per frame by binary search, so that a row pays no floating-point
+    /// operation for a sphere it cannot meet.
+    ///
+    /// Exact, not a bound: it evaluates `row_span`'s own test (`hw2 < 0`, the same
+    /// `f32` expression, [`Self::row_cut`]), and the rows passing it are an interval.
+    /// `dy` is non-decreasing in `j` (each rounded operation is monotone); where
+    /// `dy ≤ 0`, `dy²` is non-increasing in `j`, so `hw2` (monotone in `q·dy²` for a
+    /// finite `q > 0`) is non-decreasing, and where `dy ≥ 0` non-increasing. So `hw2`
+    /// peaks at the last row with `dy < 0` or the first with `dy ≥ 0`, and falls off
+    /// on both sides. Test: `rows_hold_every_row_span`.
+    pub(crate) fn rows(&self, height: u32) -> (u32, u32) {
+        let Silhouette::Ellipse { y0i, y0f, q, h0, .. } = *self else {
+            return (0, height);
+        };
+        if !(q > 0.0 && q.is_finite() && h0.is_finite() && y0i.is_finite() && y0f.is_finite()) {
+            return (0, height);
+        }
+        let cut = |j: u32| Self::row_cut(j, y0i, y0f, q, h0);
+        let inside = |j: u32| !(cut(j).1 < 0.0);
+        // The first row of `lo..hi` where a predicate false-then-true holds (`hi` if none).
+        let first = |mut lo: u32, mut hi: u32, p: &dyn Fn(u32) -> bool| {
+            while lo < hi {
+                let mid = lo + (hi - lo) / 2;
+                if p(mid) {
+                    hi = mid;
+                } else {
+                    lo = mid + 1;
+                }
+            }
+            lo
+        };
+        let p = first(0, height, &|j| cut(j).0 >= 0.0);
+        let peak = [p.checked_sub(1), (p < height).then_some(p)]
+            .into_iter()
+            .flatten()
+            .find(|&j| inside(j));
+        let Some(m) = peak else {
+            return (0, 0);
+        };
+        (first(0, m, &inside), first(m + 1, height, &|j| !inside(j)))
+    }
+
     /// The columns `[lo, hi)` of row `j` (clamped to the visible `[i0, i1)`) whose
     /// rays can hit the sphere; `None` if none can.
     #[inline]
@@ -255,12 +311,7 @@ impl Silhouette {
                 xc0,
                 kx,
             } => {
-                // Cut the ellipse with the scanline through the row's pixel centres.
-                // `j − y0i` is exact (integers below 2²⁴), so dy has one rounding.
-                let dy = (j as f32 - y0i) - y0f;
-                // Slack 2⁻¹⁶·h0 covers the f32 rounding of h0 − q·dy² (≤ 3 ulp of
-                // max(h0, q·dy²), and rows with q·dy² ≫ h0 are far outside anyway).
-                let hw2 = (h0 - q * (dy * dy)) + h0 * (1.0 / 65536.0);
+                let (dy, hw2) = Self::row_cut(j, y0i, y0f, q, h0);
                 if hw2 < 0.0 {
                     return None;
                 }
@@ -400,6 +451,97 @@ fn ellipse<const INNER: bool>(
 mod tests {
     use super::*;
     use embedded_graphics::prelude::Size;
+
+    /// `rows` is exactly the set of rows passing `row_span`'s test, so no row outside
+    /// it has a span: random spheres and cameras (on screen, off screen above and
+    /// below, sub-pixel, huge, with and without a margin), plain and random
+    /// coefficients near the ends of the image, and the degenerate cases (every row).
+    #[test]
+    fn rows_hold_every_row_span() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |lo: f32, hi: f32| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
+        };
+        let check = |sil: Silhouette, (w, h): (u32, u32)| {
+            let (j0, j1) = sil.rows(h);
+            assert!(j0 <= j1 && j1 <= h, "{sil:?}: rows {j0}..{j1} of {h}");
+            let Silhouette::Ellipse { y0i, y0f, q, h0, .. } = sil else {
+                return 0;
+            };
+            let mut spans = 0;
+            for j in 0..h {
+                let passes = !(Silhouette::row_cut(j, y0i, y0f, q, h0).1 < 0.0);
+                assert_eq!(passes, (j0..j1).contains(&j), "{sil:?}: row {j}, rows {j0}..{j1}");
+                if sil.row_span(j, 0, w).is_some() {
+                    assert!(
+                        (j0..j1).contains(&j),
+                        "{sil:?}: row {j} has a span outside {j0}..{j1}"
+                    );
+                    spans += 1;
+                }
+            }
+            spans
+        };
+        let mut spans = 0;
+        for _ in 0..400 {
+            let size = Size::new(next(1.0, 300.0) as u32, next(1.0, 300.0) as u32);
+            let eye = Vec3::new(next(-2.0, 2.0), next(-2.0, 2.0), next(4.0, 9.0));
+            let Ok(camera) = Camera::new(
+                eye,
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+                next(0.2, 2.5),
+                size,
+            ) else {
+                continue;
+            };
+            let centre = Vec3::new(next(-6.0, 6.0), next(-6.0, 6.0), next(-6.0, 3.0));
+            let radius = next(0.0, 1.0).powi(3) * 3.0;
+            let margin = if next(0.0, 1.0) < 0.5 {
+                0.0
+            } else {
+                next(0.0, 0.01)
+            };
+            let sil = Silhouette::new(centre - eye, radius, &camera, Margin::Linear, margin);
+            spans += check(sil, (size.width, size.height));
+        }
+        // Random coefficients: centres near and past the image's ends, thin and tall.
+        for _ in 0..2_000 {
+            let y0 = next(-50.0, 350.0);
+            let sil = Silhouette::Ellipse {
+                y0i: y0.floor(),
+                y0f: y0 - y0.floor(),
+                q: next(0.0, 1.0).powi(4) * 50.0 + f32::MIN_POSITIVE,
+                h0: next(-10.0, 1.0e4),
+                xc0: next(-10.0, 300.0),
+                kx: next(-2.0, 2.0),
+            };
+            spans += check(sil, (300, 300));
+        }
+        assert!(spans > 10_000, "too few rows with spans: {spans}");
+        for (q, h0) in [
+            (f32::NAN, 1.0),
+            (0.0, 1.0),
+            (-1.0, 1.0),
+            (f32::INFINITY, 1.0),
+            (1.0, f32::NAN),
+        ] {
+            let sil = Silhouette::Ellipse {
+                y0i: 10.0,
+                y0f: 0.5,
+                q,
+                h0,
+                xc0: 5.0,
+                kx: 0.0,
+            };
+            assert_eq!(sil.rows(48), (0, 48));
+        }
+        assert_eq!(Silhouette::All.rows(48), (0, 48));
+        assert_eq!(Silhouette::All.rows(0), (0, 0));
+    }
 
     /// `band_reach` contains every point of the ellipse in the band, and `band_inside`
     /// holds only columns whose whole vertical segment is inside, on random spheres

@@ -474,13 +474,18 @@ pub(crate) fn isqrt32(mut v: u32) -> u32 {
 /// back, for `v < 2³²⁺²ʰ`. Error bound: `0 ≤ √v − isqrt(v, h) < 2^(h+1)`.
 #[inline(always)]
 pub(crate) fn isqrt(v: u128, h: u32) -> u64 {
-    shl_u64(isqrt32(shr_u128_low(v, 2 * h)), h)
+    if ARMV6M {
+        shl_u64(isqrt32(shr_u128_low(v, 2 * h)), h)
+    } else {
+        u64::from(isqrt32((v >> (2 * h)) as u32)) << h
+    }
 }
 
 // Shifts of 64- and 128-bit integers by a distance known only at run time, from
-// 32-bit words: on the Cortex-M0 the `>>`/`<<` operators are library calls there
+// 32-bit words: on the Cortex-M0 the `>>`/`<<` operators are library calls
 // (`__aeabi_lasr`, `__aeabi_llsr`, `__aeabi_llsl`), four of them per hit pixel. Each
-// is exact: the same bits as the operator.
+// is exact: the same bits as the operator. Used on ARMv6-M only ([`ARMV6M`]): RV32 and
+// the Cortex-M3/M4 shift register pairs inline, in fewer instructions.
 
 /// `x >> s` (arithmetic), `s < 64`.
 #[inline(always)]
@@ -533,7 +538,9 @@ pub(crate) fn shl_u64(x: u32, s: u32) -> u64 {
 /// 16-bit products: the Cortex-M0's `MULS` keeps the low 32 bits of a product, and an
 /// `i64` multiply is a library call there (`__aeabi_lmul`, a full 64×64-bit product).
 /// Exact: `x = x₁·2¹⁶ + x₀` with `x₁` signed, `x₀ < 2¹⁶` (likewise `y`); each partial
-/// product is below 2³¹ in magnitude. Any other `x` is multiplied as `i64` (wrapping, as a release build's `*`).
+/// product is below 2³¹ in magnitude. Any other `x` is multiplied as `i64` (wrapping,
+/// as a release build's `*`). Used on ARMv6-M only ([`ARMV6M`]): RV32 (`MULH`) and the
+/// Cortex-M3/M4 (`SMULL`) have the 64-bit product in one or two instructions.
 #[inline(always)]
 pub(crate) fn mul_wide(x: i64, y: i32) -> i64 {
     let Ok(x) = i32::try_from(x) else {
@@ -546,10 +553,12 @@ pub(crate) fn mul_wide(x: i64, y: i32) -> i64 {
     high + mid + i64::from((x0 as u32) * (y0 as u32))
 }
 
-/// Whether the target has no divide instruction: ARMv6-M (Cortex-M0, M0+), told
-/// apart by its missing compare-and-swap atomics (ARMv7-M and ARMv8-M Baseline have
-/// both a divider and compare-and-swap). There [`div_q16`] replaces the `/`.
-const NO_DIVIDER: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+/// Whether the target is ARMv6-M (Cortex-M0, M0+): no divide instruction, no
+/// 32×32→64-bit multiply, no 64-bit shifts but by library calls. Told apart by its
+/// missing compare-and-swap atomics (ARMv7-M and ARMv8-M Baseline have both those
+/// and compare-and-swap). There [`div_q16`], [`mul_wide`] and the word-wise shifts
+/// replace the operators (same results; elsewhere the operators are cheaper).
+const ARMV6M: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
 
 /// `R[k] = ⌊2²³/(k + 257)⌋`, the reciprocals of [`div_q16`] (`< 2¹⁵`): a lower bound
 /// of `2²⁹/D` for every `D` in `[(k + 256)·2⁶, (k + 257)·2⁶)`.
@@ -566,7 +575,7 @@ const RECIPROCALS: [u16; 256] = {
 };
 
 /// `⌊n·2¹⁶/d⌋` for `n ≤ d`, `1 ≤ d < 2¹⁵`, exactly, without a divide instruction
-/// (the Cortex-M0's `__aeabi_uidiv` is a loop of ≈ 100 instructions): two 32-bit
+/// (the Cortex-M0's `__aeabi_uidiv` is a shift-and-subtract loop): two 32-bit
 /// multiplies by a table reciprocal, then at most two corrections.
 ///
 /// Why it is exact: `d` and `n` are doubled until `D = d·2ᵉ ≥ 2¹⁴` (the quotient is
@@ -619,12 +628,16 @@ pub(crate) fn nz_q16(num: i64, den: i64, q: u32) -> u32 {
     if num >= den {
         return 1 << 16;
     }
-    let (n, d) = (sar64(num, q) as u32, sar64(den, q) as u32);
+    let (n, d) = if ARMV6M {
+        (sar64(num, q) as u32, sar64(den, q) as u32)
+    } else {
+        ((num >> q) as u32, (den >> q) as u32)
+    };
     if d == 0 {
         return 0;
     }
     // n ≤ d < 2¹⁵: n·2¹⁶ < 2³¹.
-    if NO_DIVIDER {
+    if ARMV6M {
         div_q16(n, d)
     } else {
         (n << 16) / d
@@ -814,9 +827,16 @@ impl<'c> IntRow<'_, '_, 'c> {
             Some((sp, t)) => {
                 let p = self.frame.p;
                 // a and T shifted by p: a >> p < 2³¹, products < 2⁵⁷.
-                let a = sar64(self.a, p);
-                let num = mul_wide(a, sp.lz) - mul_wide(sar64(t, p), self.frame.f);
-                shade(sp.rgb, nz_q16(num, mul_wide(a, sp.rho), u32::from(sp.q)))
+                let (num, den) = if ARMV6M {
+                    let a = sar64(self.a, p);
+                    let num = mul_wide(a, sp.lz) - mul_wide(sar64(t, p), self.frame.f);
+                    (num, mul_wide(a, sp.rho))
+                } else {
+                    let a = self.a >> p;
+                    let num = i64::from(sp.lz) * a - i64::from(self.frame.f) * (t >> p);
+                    (num, a * i64::from(sp.rho))
+                };
+                shade(sp.rgb, nz_q16(num, den, u32::from(sp.q)))
             }
             None => self.frame.background,
         };

@@ -452,19 +452,23 @@ mod tests {
     use super::*;
     use embedded_graphics::prelude::Size;
 
+    /// Uniform `f32` draws in `[lo, hi)` from an xorshift64 generator seeded `state`.
+    fn uniform(mut state: u64) -> impl FnMut(f32, f32) -> f32 {
+        move |lo, hi| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
+        }
+    }
+
     /// `rows` is exactly the set of rows passing `row_span`'s test, so no row outside
     /// it has a span: random spheres and cameras (on screen, off screen above and
     /// below, sub-pixel, huge, with and without a margin), plain and random
     /// coefficients near the ends of the image, and the degenerate cases (every row).
     #[test]
     fn rows_hold_every_row_span() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |lo: f32, hi: f32| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
-        };
+        let mut next = uniform(0x2545_f491_4f6c_dd1d);
         let check = |sil: Silhouette, (w, h): (u32, u32)| {
             let (j0, j1) = sil.rows(h);
             assert!(j0 <= j1 && j1 <= h, "{sil:?}: rows {j0}..{j1} of {h}");
@@ -550,13 +554,7 @@ mod tests {
     /// band's ends alone would be too narrow).
     #[test]
     fn band_reach_and_inside_hold_on_a_fine_grid() {
-        let mut state = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = |lo: f32, hi: f32| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
-        };
+        let mut next = uniform(0x9E37_79B9_7F4A_7C15);
         let (mut probed, mut inside_probed, mut interior_extreme) = (0u32, 0u32, 0u32);
         for _ in 0..300 {
             let eye = Vec3::new(next(-2.0, 2.0), next(-2.0, 2.0), next(4.0, 9.0));

@@ -474,22 +474,49 @@ pub(crate) fn isqrt32(mut v: u32) -> u32 {
 /// back, for `v < 2³²⁺²ʰ`. Error bound: `0 ≤ √v − isqrt(v, h) < 2^(h+1)`.
 #[inline(always)]
 pub(crate) fn isqrt(v: u128, h: u32) -> u64 {
-    if ARMV6M {
-        shl_u64(isqrt32(shr_u128_low(v, 2 * h)), h)
-    } else {
-        u64::from(isqrt32((v >> (2 * h)) as u32)) << h
-    }
+    shl_u64(isqrt32(shr_u128_low(v, 2 * h)), h)
 }
 
 // Shifts of 64- and 128-bit integers by a distance known only at run time, from
 // 32-bit words: on the Cortex-M0 the `>>`/`<<` operators are library calls
 // (`__aeabi_lasr`, `__aeabi_llsr`, `__aeabi_llsl`), four of them per hit pixel. Each
 // is exact: the same bits as the operator. Used on ARMv6-M only ([`ARMV6M`]): RV32 and
-// the Cortex-M3/M4 shift register pairs inline, in fewer instructions.
+// the Cortex-M3/M4 shift register pairs inline, in fewer instructions, so elsewhere
+// each is the operator.
 
 /// `x >> s` (arithmetic), `s < 64`.
 #[inline(always)]
 pub(crate) fn sar64(x: i64, s: u32) -> i64 {
+    if ARMV6M {
+        sar64_words(x, s)
+    } else {
+        x >> s
+    }
+}
+
+/// `(v >> s) as u32`, `s < 128`.
+#[inline(always)]
+pub(crate) fn shr_u128_low(v: u128, s: u32) -> u32 {
+    if ARMV6M {
+        shr_u128_low_words(v, s)
+    } else {
+        (v >> s) as u32
+    }
+}
+
+/// `u64::from(x) << s`, `s < 64`.
+#[inline(always)]
+pub(crate) fn shl_u64(x: u32, s: u32) -> u64 {
+    if ARMV6M {
+        shl_u64_words(x, s)
+    } else {
+        u64::from(x) << s
+    }
+}
+
+/// [`sar64`] from 32-bit words.
+#[inline(always)]
+fn sar64_words(x: i64, s: u32) -> i64 {
     let (lo, hi) = (x as u32, (x >> 32) as i32);
     let (lo, hi) = if s >= 32 {
         ((hi >> (s & 31)) as u32, hi >> 31)
@@ -501,9 +528,9 @@ pub(crate) fn sar64(x: i64, s: u32) -> i64 {
     (i64::from(hi) << 32) | i64::from(lo)
 }
 
-/// `(v >> s) as u32`, `s < 128`.
+/// [`shr_u128_low`] from 32-bit words.
 #[inline(always)]
-pub(crate) fn shr_u128_low(v: u128, s: u32) -> u32 {
+fn shr_u128_low_words(v: u128, s: u32) -> u32 {
     let word = |k: u32| -> u32 {
         match k {
             0 => v as u32,
@@ -521,9 +548,9 @@ pub(crate) fn shr_u128_low(v: u128, s: u32) -> u32 {
     }
 }
 
-/// `u64::from(x) << s`, `s < 64`.
+/// [`shl_u64`] from 32-bit words.
 #[inline(always)]
-pub(crate) fn shl_u64(x: u32, s: u32) -> u64 {
+fn shl_u64_words(x: u32, s: u32) -> u64 {
     let (lo, hi) = if s >= 32 {
         (0, x << (s & 31))
     } else if s == 0 {
@@ -534,15 +561,25 @@ pub(crate) fn shl_u64(x: u32, s: u32) -> u64 {
     (u64::from(hi) << 32) | u64::from(lo)
 }
 
-/// `x·y` for an `x` that fits in 32 bits (the shade's `a >> p`, `T >> p`), from four
-/// 16-bit products: the Cortex-M0's `MULS` keeps the low 32 bits of a product, and an
+/// `x·y`: on ARMv6-M, for an `x` that fits in 32 bits (the shade's `a >> p`,
+/// `T >> p`), from four 16-bit products ([`mul_wide_halves`]); elsewhere the operator.
+#[inline(always)]
+pub(crate) fn mul_wide(x: i64, y: i32) -> i64 {
+    if ARMV6M {
+        mul_wide_halves(x, y)
+    } else {
+        x * i64::from(y)
+    }
+}
+
+/// [`mul_wide`] from 16-bit halves: the Cortex-M0's `MULS` keeps the low 32 bits of a product, and an
 /// `i64` multiply is a library call there (`__aeabi_lmul`, a full 64×64-bit product).
 /// Exact: `x = x₁·2¹⁶ + x₀` with `x₁` signed, `x₀ < 2¹⁶` (likewise `y`); each partial
 /// product is below 2³¹ in magnitude. Any other `x` is multiplied as `i64` (wrapping,
 /// as a release build's `*`). Used on ARMv6-M only ([`ARMV6M`]): RV32 (`MULH`) and the
 /// Cortex-M3/M4 (`SMULL`) have the 64-bit product in one or two instructions.
 #[inline(always)]
-pub(crate) fn mul_wide(x: i64, y: i32) -> i64 {
+fn mul_wide_halves(x: i64, y: i32) -> i64 {
     let Ok(x) = i32::try_from(x) else {
         return x.wrapping_mul(i64::from(y));
     };
@@ -628,11 +665,7 @@ pub(crate) fn nz_q16(num: i64, den: i64, q: u32) -> u32 {
     if num >= den {
         return 1 << 16;
     }
-    let (n, d) = if ARMV6M {
-        (sar64(num, q) as u32, sar64(den, q) as u32)
-    } else {
-        ((num >> q) as u32, (den >> q) as u32)
-    };
+    let (n, d) = (sar64(num, q) as u32, sar64(den, q) as u32);
     if d == 0 {
         return 0;
     }
@@ -827,16 +860,9 @@ impl<'c> IntRow<'_, '_, 'c> {
             Some((sp, t)) => {
                 let p = self.frame.p;
                 // a and T shifted by p: a >> p < 2³¹, products < 2⁵⁷.
-                let (num, den) = if ARMV6M {
-                    let a = sar64(self.a, p);
-                    let num = mul_wide(a, sp.lz) - mul_wide(sar64(t, p), self.frame.f);
-                    (num, mul_wide(a, sp.rho))
-                } else {
-                    let a = self.a >> p;
-                    let num = i64::from(sp.lz) * a - i64::from(self.frame.f) * (t >> p);
-                    (num, a * i64::from(sp.rho))
-                };
-                shade(sp.rgb, nz_q16(num, den, u32::from(sp.q)))
+                let a = sar64(self.a, p);
+                let num = mul_wide(a, sp.lz) - mul_wide(sar64(t, p), self.frame.f);
+                shade(sp.rgb, nz_q16(num, mul_wide(a, sp.rho), u32::from(sp.q)))
             }
             None => self.frame.background,
         };
@@ -983,7 +1009,7 @@ mod tests {
         }
     }
 
-    /// `mul_wide` equals the `i64` product for 32-bit `x` of every sign and size
+    /// `mul_wide_halves` equals the `i64` product for 32-bit `x` of every sign and size
     /// (the 16-bit halves' extremes) and for wider `x`.
     #[test]
     fn mul_wide_equals_the_product() {
@@ -1005,7 +1031,7 @@ mod tests {
         for &a in &values {
             for &b in &values {
                 let b = b as i32;
-                assert_eq!(mul_wide(a, b), a.wrapping_mul(i64::from(b)), "{a}·{b}");
+                assert_eq!(mul_wide_halves(a, b), a.wrapping_mul(i64::from(b)), "{a}·{b}");
             }
         }
     }
@@ -1032,13 +1058,21 @@ mod tests {
         }
         for &v in &values {
             for s in 0..64 {
-                assert_eq!(sar64(v as i64, s), (v as i64) >> s, "{v:#x} >> {s}");
-                assert_eq!(shl_u64(v as u32, s), u64::from(v as u32) << s, "{v:#x} << {s}");
+                assert_eq!(sar64_words(v as i64, s), (v as i64) >> s, "{v:#x} >> {s}");
+                assert_eq!(
+                    shl_u64_words(v as u32, s),
+                    u64::from(v as u32) << s,
+                    "{v:#x} << {s}"
+                );
             }
             for &w in &values {
                 let wide = (u128::from(v) << 64) | u128::from(w);
                 for s in 0..128 {
-                    assert_eq!(shr_u128_low(wide, s), (wide >> s) as u32, "{wide:#x} >> {s}");
+                    assert_eq!(
+                        shr_u128_low_words(wide, s),
+                        (wide >> s) as u32,
+                        "{wide:#x} >> {s}"
+                    );
                 }
             }
         }

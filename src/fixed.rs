@@ -450,22 +450,77 @@ fn plan(
     })
 }
 
-/// `⌊√v⌋` of a `u32`, digit by digit (exact).
-#[inline(always)]
-pub(crate) fn isqrt32(mut v: u32) -> u32 {
-    let mut r = 0u32;
-    let mut bit = 1u32 << 30;
-    while bit > v {
-        bit >>= 2;
-    }
-    while bit != 0 {
-        if v >= r + bit {
-            v -= r + bit;
-            r = (r >> 1) + bit;
-        } else {
-            r >>= 1;
+/// `SQRT_TABLE[k] = ⌊√((k + 64)·2²⁴)⌋` (the last entry, `2¹⁶`, kept as `2¹⁶ − 1`):
+/// [`isqrt32`]'s estimate of `√n` at `n`'s top eight bits, `64 ≤ n >> 24 ≤ 256`.
+// Evaluated at compile time: an index out of range would fail the build.
+#[allow(clippy::indexing_slicing)]
+const SQRT_TABLE: [u16; 193] = {
+    let mut t = [0u16; 193];
+    let mut k = 0;
+    while k < 193 {
+        // ⌊√x⌋ by bisection on [0, 2¹⁷): lo² ≤ x < hi².
+        let x = (k as u64 + 64) << 24;
+        let (mut lo, mut hi) = (0u64, 1u64 << 17);
+        while hi - lo > 1 {
+            let m = (lo + hi) / 2;
+            if m * m <= x {
+                lo = m;
+            } else {
+                hi = m;
+            }
         }
-        bit >>= 2;
+        t[k] = if lo > 0xffff { 0xffff } else { lo as u16 };
+        k += 1;
+    }
+    t
+};
+
+/// `⌊√v⌋` of a `u32`, exactly, in a few steps whatever `v` (the digit-by-digit root
+/// takes sixteen rounds of compare and subtract; on a Cortex-M0 about 200 instructions
+/// a hit): `v` normalised to `n = v·4ᵉ` in `[2³⁰, 2³²)`, `√n` estimated from
+/// [`SQRT_TABLE`] at `n`'s top eight bits, linearly interpolated on its next eight,
+/// `r = ⌊s/2ᵉ⌋`, then `r` counted up while `(r + 1)² ≤ v`.
+///
+/// Why it is exact: every step of the estimate rounds down — the table's entries are
+/// floors, the chord between two entries lies below the concave root, the
+/// interpolation drops `n`'s low sixteen bits and floors its product, the shift floors
+/// — so `s ≤ √n` and `r ≤ s/2ᵉ ≤ √v`, i.e. `r ≤ ⌊√v⌋`; the count-up then reaches `⌊√v⌋`
+/// exactly. It runs at most twice (the estimate is never more than 2 below, over every
+/// `u32`: test `isqrt32_is_exact_everywhere`). No product overflows: `r ≤ 2¹⁶ − 1`, so
+/// `r² < 2³²`, and the interpolation's `(hi − lo)·255 < 2¹⁶`.
+#[inline(always)]
+pub(crate) fn isqrt32(v: u32) -> u32 {
+    if v == 0 {
+        return 0;
+    }
+    let (mut n, mut e) = (v, 0u32);
+    if n < 1 << 16 {
+        n <<= 16;
+        e += 8;
+    }
+    if n < 1 << 24 {
+        n <<= 8;
+        e += 4;
+    }
+    if n < 1 << 28 {
+        n <<= 4;
+        e += 2;
+    }
+    if n < 1 << 30 {
+        n <<= 2;
+        e += 1;
+    }
+    // n >> 24 in [64, 256): the index is in [0, 192), its successor at most 192.
+    let k = ((n >> 24) - 64) as usize;
+    let entry = |i: usize| SQRT_TABLE.get(i).copied().map_or(0, u32::from);
+    let (lo, hi) = (entry(k), entry(k + 1));
+    let s = lo + ((hi.saturating_sub(lo) * ((n >> 16) & 255)) >> 8);
+    let mut r = s >> e;
+    // r ≤ ⌊√v⌋ (doc): count up while (r + 1)² ≤ v, i.e. while v − r² > 2r.
+    let mut rem = v - r * r;
+    while rem > 2 * r {
+        rem -= 2 * r + 1;
+        r += 1;
     }
     r
 }
@@ -998,7 +1053,7 @@ mod tests {
     }
 
     /// Every `(n, d)` of [`div_q16`]'s range: 2²⁹ pairs, seconds in release mode
-    /// (`cargo test --release --lib -- --ignored div_q16`, run by `.ci/run`).
+    /// (`cargo test --release --lib -- --ignored _is_exact_everywhere`, run by `.ci/run`).
     #[test]
     #[ignore = "exhaustive: run in release mode"]
     fn div_q16_is_exact_everywhere() {
@@ -1078,12 +1133,49 @@ mod tests {
         }
     }
 
+    /// `r = ⌊√v⌋`: `r² ≤ v < (r + 1)²`.
+    fn check_isqrt32(v: u32) {
+        let r = u64::from(isqrt32(v));
+        assert!(
+            r * r <= u64::from(v) && (r + 1) * (r + 1) > u64::from(v),
+            "√{v}: {r}"
+        );
+    }
+
+    /// [`isqrt32`] on the first million, next to every square (where `⌊√v⌋` steps), at
+    /// the normalisation's and the table's boundaries, and at the top of the range.
     #[test]
     fn isqrt32_is_exact() {
-        for v in (0..1_000_000u32).chain([u32::MAX, u32::MAX - 1, 1 << 30, (1 << 30) - 1]) {
-            let r = isqrt32(v);
-            assert!(u64::from(r) * u64::from(r) <= u64::from(v), "{v}");
-            assert!(u64::from(r + 1) * u64::from(r + 1) > u64::from(v), "{v}");
+        for v in 0..1_000_000u32 {
+            check_isqrt32(v);
+        }
+        for r in 0..=0xffffu32 {
+            let sq = r * r;
+            for v in [sq.wrapping_sub(1), sq, sq + 1, sq + r, sq + 2 * r] {
+                check_isqrt32(v);
+            }
+        }
+        for b in 0..32 {
+            let p = 1u32 << b;
+            for v in [p - 1, p, p + 1, p | (p >> 1), p | (p - 1)] {
+                check_isqrt32(v);
+            }
+        }
+        for k in 64..=256u32 {
+            let n = k << 24;
+            for v in [n.wrapping_sub(1), n, n | 0xff_ffff] {
+                check_isqrt32(v);
+            }
+        }
+    }
+
+    /// Every `u32`: 2³² roots, seconds in release mode
+    /// (`cargo test --release --lib -- --ignored _is_exact_everywhere`, run by `.ci/run`).
+    #[test]
+    #[ignore = "exhaustive: run in release mode"]
+    fn isqrt32_is_exact_everywhere() {
+        for v in 0..=u32::MAX {
+            check_isqrt32(v);
         }
     }
 

@@ -616,8 +616,8 @@ fn shl_u64_words(x: u32, s: u32) -> u64 {
     (u64::from(hi) << 32) | u64::from(lo)
 }
 
-/// `x·y`: on ARMv6-M, for an `x` that fits in 32 bits (the shade's `a >> p`,
-/// `T >> p`), from four 16-bit products ([`mul_wide_halves`]); elsewhere the operator.
+/// `x·y`: on ARMv6-M, for `0 ≤ x, y < 2³¹` (the shade's `a >> p`, `T >> p`, `ℓz`,
+/// `ρ`, `F`), from four 16-bit products ([`mul_wide_halves`]); elsewhere the operator.
 #[inline(always)]
 pub(crate) fn mul_wide(x: i64, y: i32) -> i64 {
     if ARMV6M {
@@ -627,22 +627,28 @@ pub(crate) fn mul_wide(x: i64, y: i32) -> i64 {
     }
 }
 
-/// [`mul_wide`] from 16-bit halves: the Cortex-M0's `MULS` keeps the low 32 bits of a product, and an
-/// `i64` multiply is a library call there (`__aeabi_lmul`, a full 64×64-bit product).
-/// Exact: `x = x₁·2¹⁶ + x₀` with `x₁` signed, `x₀ < 2¹⁶` (likewise `y`); each partial
-/// product is below 2³¹ in magnitude. Any other `x` is multiplied as `i64` (wrapping,
-/// as a release build's `*`). Used on ARMv6-M only ([`ARMV6M`]): RV32 (`MULH`) and the
-/// Cortex-M3/M4 (`SMULL`) have the 64-bit product in one or two instructions.
+/// [`mul_wide`] from 16-bit halves: the Cortex-M0's `MULS` keeps the low 32 bits of a
+/// product, and an `i64` multiply is a library call there (`__aeabi_lmul`, a full
+/// 64×64-bit product). Exact for `0 ≤ x, y < 2³¹`: with `x = x₁·2¹⁶ + x₀`,
+/// `y = y₁·2¹⁶ + y₀` (`x₁, y₁ < 2¹⁵`, `x₀, y₀ < 2¹⁶`) the cross products are each below
+/// 2³¹, so their sum fits a `u32`, and the low word's one carry goes to the high word.
+/// Any other `x`, `y` (never the shade's) is multiplied as `i64` (wrapping, as a release
+/// build's `*`). Used on ARMv6-M only ([`ARMV6M`]): RV32 (`MULH`) and the Cortex-M3/M4
+/// (`SMULL`) have the 64-bit product in one or two instructions.
 #[inline(always)]
 fn mul_wide_halves(x: i64, y: i32) -> i64 {
-    let Ok(x) = i32::try_from(x) else {
+    let (Ok(xu), Ok(yu)) = (u32::try_from(x), u32::try_from(y)) else {
         return x.wrapping_mul(i64::from(y));
     };
-    let (x1, x0) = (x >> 16, x & 0xffff);
-    let (y1, y0) = (y >> 16, y & 0xffff);
-    let high = i64::from(x1 * y1) << 32;
-    let mid = (i64::from(x1 * y0) + i64::from(x0 * y1)) << 16;
-    high + mid + i64::from((x0 as u32) * (y0 as u32))
+    if xu >> 31 != 0 {
+        return x.wrapping_mul(i64::from(y));
+    }
+    let (x1, x0) = (xu >> 16, xu & 0xffff);
+    let (y1, y0) = (yu >> 16, yu & 0xffff);
+    let mid = x1 * y0 + x0 * y1;
+    let (lo, carry) = (x0 * y0).overflowing_add(mid << 16);
+    let hi = x1 * y1 + (mid >> 16) + u32::from(carry);
+    ((u64::from(hi) << 32) | u64::from(lo)) as i64
 }
 
 /// Whether the target is ARMv6-M (Cortex-M0, M0+): no divide instruction, no
@@ -1064,8 +1070,8 @@ mod tests {
         }
     }
 
-    /// `mul_wide_halves` equals the `i64` product for 32-bit `x` of every sign and size
-    /// (the 16-bit halves' extremes) and for wider `x`.
+    /// `mul_wide_halves` equals the `i64` product for `x`, `y` of every sign and size
+    /// (the 16-bit halves' extremes, `2³¹ − 1`, wider `x`).
     #[test]
     fn mul_wide_equals_the_product() {
         let mut x = 0x2545_f491_4f6c_dd1du64;
@@ -1088,6 +1094,15 @@ mod tests {
                 let b = b as i32;
                 assert_eq!(mul_wide_halves(a, b), a.wrapping_mul(i64::from(b)), "{a}·{b}");
             }
+        }
+        // The shade's domain, 0 ≤ x, y < 2³¹, on every size.
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let (a, b) = ((x >> 33) >> (x % 31), (x as u32 >> 1) >> ((x >> 8) % 31));
+            let b = b as i32;
+            assert_eq!(mul_wide_halves(a as i64, b), a as i64 * i64::from(b), "{a}·{b}");
         }
     }
 

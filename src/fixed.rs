@@ -300,18 +300,30 @@ impl<'a> IntFrame<'a> {
     }
 }
 
-/// `⌈log₂ x⌉` for `x ≥ 1` (0 below; at most 1100).
+/// `⌈log₂ x⌉` for `x ≥ 1` (0 below; at most 1100): the smallest `e ≥ 0` with
+/// `2ᵉ ≥ x`, counted up from `x`'s binary exponent (`2^ilogb(x) ≤ x`, so at most one
+/// step; a soft-float count from 0 took up to a hundred per call).
 fn ceil_log2(x: f64) -> i32 {
-    let mut e = 0;
+    let mut e = if x.is_finite() && x > 1.0 {
+        libm::ilogb(x).clamp(0, 1100)
+    } else {
+        0
+    };
     while libm::ldexp(1.0, e) < x && e < 1100 {
         e += 1;
     }
     e
 }
 
-/// The largest `e ≥ −1100` with `2ᵉ·x ≤ limit` (`x > 0`).
+/// The largest `e` in `[−1100, 60]` with `2ᵉ·x ≤ limit` (`x > 0`, `limit` positive and
+/// finite), counted down from `ilogb(limit) − ilogb(x) + 1`, where
+/// `2ᵉ·x ≥ 2^(ilogb(limit) + 1) > limit` already fails (at most two steps).
 fn fit_exponent(x: f64, limit: f64) -> i32 {
-    let mut e = 60;
+    let mut e = if x.is_finite() && x > 0.0 {
+        (libm::ilogb(limit) - libm::ilogb(x) + 1).clamp(-1100, 60)
+    } else {
+        60
+    };
     while libm::ldexp(x, e) > limit && e > -1100 {
         e -= 1;
     }
@@ -1144,6 +1156,56 @@ mod tests {
                         "{wide:#x} >> {s}"
                     );
                 }
+            }
+        }
+    }
+
+    /// The exponent searches equal plain counts (up from 0, down from 60) on values of
+    /// every magnitude, at and beside powers of two, and on the edge cases.
+    #[test]
+    fn exponents_equal_the_plain_counts() {
+        let ceil_count = |x: f64| {
+            let mut e = 0;
+            while libm::ldexp(1.0, e) < x && e < 1100 {
+                e += 1;
+            }
+            e
+        };
+        let fit_count = |x: f64, limit: f64| {
+            let mut e = 60;
+            while libm::ldexp(x, e) > limit && e > -1100 {
+                e -= 1;
+            }
+            e
+        };
+        let mut xs = std::vec![
+            0.0,
+            -1.0,
+            0.5,
+            1.0,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NAN
+        ];
+        for b in -1074..1024 {
+            let p = libm::ldexp(1.0, b);
+            xs.extend([
+                p,
+                p * (1.0 + f64::EPSILON),
+                p * (1.0 - f64::EPSILON / 2.0),
+                p * 1.5,
+            ]);
+        }
+        for &x in &xs {
+            assert_eq!(ceil_log2(x), ceil_count(x), "ceil_log2({x:e})");
+            for limit in [MAX_D, MAX_L - 2.0, 1.0, 3.0, 1e300] {
+                assert_eq!(
+                    fit_exponent(x, limit),
+                    fit_count(x, limit),
+                    "fit_exponent({x:e}, {limit})"
+                );
             }
         }
     }

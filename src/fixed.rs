@@ -302,7 +302,7 @@ impl<'a> IntFrame<'a> {
 
 /// `⌈log₂ x⌉` for `x ≥ 1` (0 below; at most 1100): the smallest `e ≥ 0` with
 /// `2ᵉ ≥ x`, counted up from `x`'s binary exponent (`2^ilogb(x) ≤ x`, so at most one
-/// step; a soft-float count from 0 took up to a hundred per call).
+/// step, where a count from 0 would take up to a hundred soft-float steps).
 fn ceil_log2(x: f64) -> i32 {
     let mut e = if x.is_finite() && x > 1.0 {
         libm::ilogb(x).clamp(0, 1100)

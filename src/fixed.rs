@@ -1046,6 +1046,13 @@ impl Iterator for IntSamples<'_, '_, '_> {
 mod tests {
     use super::*;
 
+    /// One step of the xorshift64 generator the random tests draw from.
+    fn xorshift(x: &mut u64) {
+        *x ^= *x << 13;
+        *x ^= *x >> 7;
+        *x ^= *x << 17;
+    }
+
     /// `div_q16(n, d) = ⌊n·2¹⁶/d⌋` for every divisor, the numerators at the ends and
     /// spread over the range, every numerator for divisors at the normalisation's and
     /// the table's boundaries; and outside the range (it divides there).
@@ -1098,9 +1105,7 @@ mod tests {
             i64::MAX,
         ]);
         for _ in 0..2_000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            xorshift(&mut x);
             values.push((x as i64) >> (x % 40));
         }
         for &a in &values {
@@ -1111,9 +1116,7 @@ mod tests {
         }
         // The shade's domain, 0 ≤ x, y < 2³¹, on every size.
         for _ in 0..200_000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            xorshift(&mut x);
             let (a, b) = ((x >> 33) >> (x % 31), (x as u32 >> 1) >> ((x >> 8) % 31));
             let b = b as i32;
             assert_eq!(mul_wide_halves(a as i64, b), a as i64 * i64::from(b), "{a}·{b}");
@@ -1135,9 +1138,7 @@ mod tests {
             0xffff_ffff
         ];
         for _ in 0..200 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            xorshift(&mut x);
             values.push(x);
         }
         for &v in &values {
@@ -1270,9 +1271,7 @@ mod tests {
         }
         let mut x = 0x9e37_79b9_7f4a_7c15u64;
         for _ in 0..100_000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            xorshift(&mut x);
             let y = x.rotate_left(17) ^ 0x5555;
             vs.push(((u128::from(x) << 64) | u128::from(y)) >> (22 + x % 106));
         }
@@ -1296,9 +1295,7 @@ mod tests {
     fn nz_bound() {
         let mut x = 0x2545_f491_4f6c_dd1du64;
         for _ in 0..200_000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            xorshift(&mut x);
             let den = ((x >> 3) >> (x % 50)).max(1) as i64;
             let frac = (x % 10_007) as f64 / 10_007.0;
             let num = (den as f64 * frac) as i64;

@@ -42,25 +42,25 @@
 //!
 //! ## Depth and shade
 //!
-//! Where `D ≥ 0` the hit distance's numerator `T = b − √D` (`t = T/a`, the same `a`
-//! for every sphere of the pixel) orders the spheres; [`isqrt`] has error `< 2^(h+1)`
-//! with the sphere's per-frame shift `h = ⌈(bits(d_max²·ρ²) − 32)/2⌉` (`D ≤ a·ρ²`:
-//! about `4·|d|·ρ·2⁻¹⁶`). Lab #1 needs `n·(−w) = (ℓz − t·F)/ρ = (ℓz·a − F·T)/(a·ρ)`:
-//! formed in `i64` from `a` and `T` shifted right by the frame's `p` (so
-//! `a >> p < 2³¹`; the `ℓz/ρ` part is unchanged by it), then divided once in 32 bits
-//! after a per-frame shift `q` ([`nz_q16`]). The shade factor's error against the
-//! quantised sphere is `≤ 2ʰ⁺¹/(F·ρ)` (root, `a ≥ F²`) `+ 2ᵖ/(F·ρ)` (shift)
-//! `+ 2/((F² >> p)·ρ >> q) + 2⁻¹⁶` (division, smallest divisor at the image's
-//! centre), `+ (ℓz + ρ)·2ᵖ/(F²·ρ)` (the shift of `a` in `T/a`); the quantisation
-//! moves the sphere by `m ≤ √3/2 + ½` (its centre's and radius's rounding, measured
-//! per sphere and frame), which turns the normal by at most `m/ρ` where the hit's
-//! half-chord `h` is large and by `≈ m/h` near the rim: with the rest of the budget
-//! `β`, the hits with `h < g = m/β` form a ring `g²/(2ρ)` wide (λ units) along the
-//! silhouette, where the shade moves with the edge. The rule takes the frame only where
-//! the sum is < 2⁻⁹ (under one level of 255, with room for the `f32` result's own
-//! rounding) and that ring, added to the edge bound, is within 1/16 pixel: there the
-//! image is that of the sphere moved by less than 1/16 pixel. Colours are
-//! `(c·k + 2¹⁵) >> 16` with `k = max(n·(−w), 0.3)` in Q16.
+//! Where `D ≥ 0` the hit distance's numerator `T = b − √D` (`t = T/a`, the same `a` for
+//! every sphere of the pixel) orders the spheres; [`isqrt`] has error `< 2^(h+1)` with
+//! the sphere's per-frame shift `h = ⌈(bits(d_max²·ρ²) − 32)/2⌉` (`D ≤ a·ρ²`: about
+//! `4·|d|·ρ·2⁻¹⁶`). Lab #1 needs `n·(−w) = (ℓz − t·F)/ρ = (ℓz·a − F·T)/(a·ρ)`: formed
+//! from `a` and `T` shifted right by the frame's `p` (so `a >> p < 2³¹` and `T >> p <
+//! 2³²`: 32×32-bit products; the `ℓz/ρ` part is unchanged by it), then divided once in
+//! 32 bits after a per-frame shift `q` ([`nz_q16`]). The shade factor's error against
+//! the quantised sphere is `≤ 2ʰ⁺¹/(F·ρ)` (root, `a ≥ F²`) `+ 2ᵖ/(F·ρ)` (shift) `+
+//! 2/((F² >> p)·ρ >> q) + 2⁻¹⁶` (division, smallest divisor at the image's centre), `+
+//! (ℓz + ρ)·2ᵖ/(F²·ρ)` (the shift of `a` in `T/a`); the quantisation moves the sphere
+//! by `m ≤ √3/2 + ½` (its centre's and radius's rounding, measured per sphere and
+//! frame), which turns the normal by at most `m/ρ` where the hit's half-chord `h` is
+//! large and by `≈ m/h` near the rim: with the rest of the budget `β`, the hits with `h
+//! < g = m/β` form a ring `g²/(2ρ)` wide (λ units) along the silhouette, where the
+//! shade moves with the edge. The rule takes the frame only where the sum is < 2⁻⁹
+//! (under one level of 255, with room for the `f32` result's own rounding) and that
+//! ring, added to the edge bound, is within 1/16 pixel: there the image is that of the
+//! sphere moved by less than 1/16 pixel. Colours are `(c·k + 2¹⁵) >> 16` with `k =
+//! max(n·(−w), 0.3)` in Q16.
 //!
 //! Where the rule does not hold (non-square pixels, an eye inside or beside a sphere,
 //! a sphere too small or too close for the bounds at the scene's extent, a scene with
@@ -356,8 +356,12 @@ fn plan(
     if !(k >= 0 && f >= 1.0 && d_max <= MAX_D && focal_edge <= f64::from(EDGE_TOLERANCE) / 8.0) {
         return None;
     }
-    // The shade's shift p: a ≤ d_max² becomes < 2³¹.
+    // The shade's shift p: a ≤ d_max² becomes < 2³¹, and T ≤ b ≤ |ℓ|·|d| ≤ 2²⁵·d_max
+    // must become < 2³² (true whenever d_max > 2²⁴, as the finest k makes it).
     let p = (ceil_log2(d_max * d_max) - 31).max(0);
+    if !(libm::ldexp(MAX_L * d_max, -p) < 4_294_967_296.0) {
+        return None;
+    }
     // Radians to pixels at the image's edge: (Fz + R²/Fz)/2.
     let px_per_rad = (fz + r_img * r_img / fz) / 2.0;
     let (u, v, w) = (camera.u(), camera.v(), camera.w());
@@ -548,18 +552,17 @@ pub(crate) fn isqrt(v: u128, h: u32) -> u64 {
 
 // Shifts of 64- and 128-bit integers by a distance known only at run time, from
 // 32-bit words: on the Cortex-M0 the `>>`/`<<` operators are library calls
-// (`__aeabi_lasr`, `__aeabi_llsr`, `__aeabi_llsl`), four of them per hit pixel. Each
-// is exact: the same bits as the operator. Used on ARMv6-M only ([`ARMV6M`]): RV32 and
-// the Cortex-M3/M4 shift register pairs inline, in fewer instructions, so elsewhere
-// each is the operator.
+// (`__aeabi_llsr`, `__aeabi_llsl`), four of them per hit pixel. Each is exact: the same
+// bits as the operator. Used on ARMv6-M only ([`ARMV6M`]): RV32 and the Cortex-M3/M4
+// shift register pairs inline, in fewer instructions, so elsewhere each is the operator.
 
-/// `x >> s` (arithmetic), `s < 64`.
+/// `(x >> s) as u32`, `s < 64`.
 #[inline(always)]
-pub(crate) fn sar64(x: i64, s: u32) -> i64 {
+pub(crate) fn shr_u64_low(x: u64, s: u32) -> u32 {
     if ARMV6M {
-        sar64_words(x, s)
+        shr_u64_low_words(x, s)
     } else {
-        x >> s
+        (x >> s) as u32
     }
 }
 
@@ -583,18 +586,16 @@ pub(crate) fn shl_u64(x: u32, s: u32) -> u64 {
     }
 }
 
-/// [`sar64`] from 32-bit words.
+/// [`shr_u64_low`] from 32-bit words. `(hi << 1) << (31 − s)` is `hi << (32 − s)`
+/// without a shift by 32 at `s = 0` (where the high word contributes nothing).
 #[inline(always)]
-fn sar64_words(x: i64, s: u32) -> i64 {
-    let (lo, hi) = (x as u32, (x >> 32) as i32);
-    let (lo, hi) = if s >= 32 {
-        ((hi >> (s & 31)) as u32, hi >> 31)
-    } else if s == 0 {
-        (lo, hi)
+fn shr_u64_low_words(x: u64, s: u32) -> u32 {
+    let (lo, hi) = (x as u32, (x >> 32) as u32);
+    if s >= 32 {
+        hi >> (s & 31)
     } else {
-        ((lo >> s) | ((hi as u32) << (32 - s)), hi >> s)
-    };
-    (i64::from(hi) << 32) | i64::from(lo)
+        (lo >> s) | ((hi << 1) << (31 - s))
+    }
 }
 
 /// [`shr_u128_low`] from 32-bit words.
@@ -630,39 +631,32 @@ fn shl_u64_words(x: u32, s: u32) -> u64 {
     (u64::from(hi) << 32) | u64::from(lo)
 }
 
-/// `x·y`: on ARMv6-M, for `0 ≤ x, y < 2³¹` (the shade's `a >> p`, `T >> p`, `ℓz`,
-/// `ρ`, `F`), from four 16-bit products ([`mul_wide_halves`]); elsewhere the operator.
+/// `x·y` as a `u64`: on ARMv6-M from four 16-bit products ([`mul_wide_halves`]);
+/// elsewhere the operator.
 #[inline(always)]
-pub(crate) fn mul_wide(x: i64, y: i32) -> i64 {
+pub(crate) fn mul_wide(x: u32, y: u32) -> u64 {
     if ARMV6M {
         mul_wide_halves(x, y)
     } else {
-        x * i64::from(y)
+        u64::from(x) * u64::from(y)
     }
 }
 
-/// [`mul_wide`] from 16-bit halves: the Cortex-M0's `MULS` keeps the low 32 bits of a
-/// product, and an `i64` multiply is a library call there (`__aeabi_lmul`, a full
-/// 64×64-bit product). Exact for `0 ≤ x, y < 2³¹`: with `x = x₁·2¹⁶ + x₀`,
-/// `y = y₁·2¹⁶ + y₀` (`x₁, y₁ < 2¹⁵`, `x₀, y₀ < 2¹⁶`) the cross products are each below
-/// 2³¹, so their sum fits a `u32`, and the low word's one carry goes to the high word.
-/// Any other `x`, `y` (never the shade's) is multiplied as `i64` (wrapping, as a release
-/// build's `*`). Used on ARMv6-M only ([`ARMV6M`]): RV32 (`MULH`) and the Cortex-M3/M4
-/// (`SMULL`) have the 64-bit product in one or two instructions.
+/// [`mul_wide`] from 16-bit halves, exactly, for every `x`, `y`: the Cortex-M0's
+/// `MULS` keeps the low 32 bits of a product, and a `u64` multiply is a library call
+/// there (`__aeabi_lmul`, a full 64×64-bit product). With `x = x₁·2¹⁶ + x₀`,
+/// `y = y₁·2¹⁶ + y₀`, the four half products fit a `u32` each; the two cross products'
+/// sum carries into bit 48, and its low half added to the low word carries into the
+/// high word. Used on ARMv6-M only ([`ARMV6M`]): RV32 (`MULHU`) and the
+/// Cortex-M3/M4 (`UMULL`) have the 64-bit product in one or two instructions.
 #[inline(always)]
-fn mul_wide_halves(x: i64, y: i32) -> i64 {
-    let (Ok(xu), Ok(yu)) = (u32::try_from(x), u32::try_from(y)) else {
-        return x.wrapping_mul(i64::from(y));
-    };
-    if xu >> 31 != 0 {
-        return x.wrapping_mul(i64::from(y));
-    }
-    let (x1, x0) = (xu >> 16, xu & 0xffff);
-    let (y1, y0) = (yu >> 16, yu & 0xffff);
-    let mid = x1 * y0 + x0 * y1;
+fn mul_wide_halves(x: u32, y: u32) -> u64 {
+    let (x1, x0) = (x >> 16, x & 0xffff);
+    let (y1, y0) = (y >> 16, y & 0xffff);
+    let (mid, mid_carry) = (x1 * y0).overflowing_add(x0 * y1);
     let (lo, carry) = (x0 * y0).overflowing_add(mid << 16);
-    let hi = x1 * y1 + (mid >> 16) + u32::from(carry);
-    ((u64::from(hi) << 32) | u64::from(lo)) as i64
+    let hi = x1 * y1 + (mid >> 16) + (u32::from(mid_carry) << 16) + u32::from(carry);
+    (u64::from(hi) << 32) | u64::from(lo)
 }
 
 /// Whether the target is ARMv6-M (Cortex-M0, M0+): no divide instruction, no
@@ -728,19 +722,20 @@ pub(crate) fn div_q16(n: u32, d: u32) -> u32 {
     q
 }
 
-/// `n·(−w)` in Q16 from `num = ℓz·a − F·T` and `den = a·ρ > 0` (both `≥ 0` and
-/// `< 2⁶³`), clamped to `[0, 2¹⁶]`: both shifted right by `q` (`den >> q < 2¹⁵`), then
-/// one 32-bit division. Error bound: `≤ 2/(den >> q) + 2⁻¹⁶` (the truncations and the
+/// `n·(−w)` in Q16 from `num = ℓz·a − F·T` and `den = a·ρ > 0` (`|num|, den < 2⁶³`),
+/// clamped to `[0, 2¹⁶]`: both shifted right by `q` (`den >> q < 2¹⁵`), then one
+/// 32-bit division. Error bound: `≤ 2/(den >> q) + 2⁻¹⁶` (the truncations and the
 /// quotient's floor).
 #[inline(always)]
-pub(crate) fn nz_q16(num: i64, den: i64, q: u32) -> u32 {
+pub(crate) fn nz_q16(num: i64, den: u64, q: u32) -> u32 {
     if num <= 0 {
         return 0;
     }
-    if num >= den {
+    // num > 0 from here.
+    if num as u64 >= den {
         return 1 << 16;
     }
-    let (n, d) = (sar64(num, q) as u32, sar64(den, q) as u32);
+    let (n, d) = (shr_u64_low(num as u64, q), shr_u64_low(den, q));
     if d == 0 {
         return 0;
     }
@@ -934,10 +929,12 @@ impl<'c> IntRow<'_, '_, 'c> {
         let color = match best {
             Some((sp, t)) => {
                 let p = self.frame.p;
-                // a and T shifted by p: a >> p < 2³¹, products < 2⁵⁷.
-                let a = sar64(self.a, p);
-                let num = mul_wide(a, sp.lz) - mul_wide(sar64(t, p), self.frame.f);
-                shade(sp.rgb, nz_q16(num, mul_wide(a, sp.rho), u32::from(sp.q)))
+                // a and T (both > 0) shifted by p: a >> p < 2³¹, T >> p < 2³² (the
+                // rule's ranges); the products are below 2⁵⁸, their difference an i64.
+                let a = shr_u64_low(self.a as u64, p);
+                let t = shr_u64_low(t as u64, p);
+                let num = mul_wide(a, sp.lz as u32) as i64 - mul_wide(t, self.frame.f as u32) as i64;
+                shade(sp.rgb, nz_q16(num, mul_wide(a, sp.rho as u32), u32::from(sp.q)))
             }
             None => self.frame.background,
         };
@@ -1091,35 +1088,22 @@ mod tests {
         }
     }
 
-    /// `mul_wide_halves` equals the `i64` product for `x`, `y` of every sign and size
-    /// (the 16-bit halves' extremes, `2³¹ − 1`, wider `x`).
+    /// `mul_wide_halves` equals the `u64` product for every size of `x` and `y`: the
+    /// halves' extremes, the carries out of the cross products and out of the low
+    /// word, and random values of every width.
     #[test]
     fn mul_wide_equals_the_product() {
         let mut x = 0x2545_f491_4f6c_dd1du64;
-        let mut values = std::vec![0i64, 1, -1, 0xffff, 0x1_0000, -0x1_0000, -0x8000, 0x7fff];
-        values.extend([
-            i64::from(i32::MAX),
-            i64::from(i32::MIN),
-            i64::from(i32::MAX) + 1,
-            i64::MIN,
-            i64::MAX,
-        ]);
+        let mut values = std::vec![0u32, 1, 0xffff, 0x1_0000, 0x1_ffff, 0x8000_0000, 0x7fff_ffff];
+        values.extend([u32::MAX, u32::MAX - 1, 0xffff_0000, 0x0001_ffff, 0xfffe_0001]);
         for _ in 0..2_000 {
             xorshift(&mut x);
-            values.push((x as i64) >> (x % 40));
+            values.push((x as u32) >> (x % 32));
         }
         for &a in &values {
             for &b in &values {
-                let b = b as i32;
-                assert_eq!(mul_wide_halves(a, b), a.wrapping_mul(i64::from(b)), "{a}·{b}");
+                assert_eq!(mul_wide_halves(a, b), u64::from(a) * u64::from(b), "{a}·{b}");
             }
-        }
-        // The shade's domain, 0 ≤ x, y < 2³¹, on every size.
-        for _ in 0..200_000 {
-            xorshift(&mut x);
-            let (a, b) = ((x >> 33) >> (x % 31), (x as u32 >> 1) >> ((x >> 8) % 31));
-            let b = b as i32;
-            assert_eq!(mul_wide_halves(a as i64, b), a as i64 * i64::from(b), "{a}·{b}");
         }
     }
 
@@ -1143,7 +1127,7 @@ mod tests {
         }
         for &v in &values {
             for s in 0..64 {
-                assert_eq!(sar64_words(v as i64, s), (v as i64) >> s, "{v:#x} >> {s}");
+                assert_eq!(shr_u64_low_words(v, s), (v >> s) as u32, "{v:#x} >> {s}");
                 assert_eq!(
                     shl_u64_words(v as u32, s),
                     u64::from(v as u32) << s,
@@ -1303,7 +1287,7 @@ mod tests {
             for keep in [15, 11, 6] {
                 let q = bits.saturating_sub(keep);
                 let d = (den >> q) as f64;
-                let got = f64::from(nz_q16(num, den, q)) / 65536.0;
+                let got = f64::from(nz_q16(num, den as u64, q)) / 65536.0;
                 let exact = num as f64 / den as f64;
                 let bound = 2.0 / d + 1.0 / 65536.0;
                 assert!(
@@ -1313,6 +1297,8 @@ mod tests {
             }
         }
         assert_eq!(nz_q16(-5, 10, 0), 0);
+        assert_eq!(nz_q16(i64::MIN, 10, 0), 0);
+        assert_eq!(nz_q16(11, 10, 0), 1 << 16);
         assert_eq!(nz_q16(10, 10, 0), 1 << 16);
     }
 }

@@ -78,7 +78,7 @@ use crate::render::{Options, Sample};
 use crate::scanline::{ColorRuns, PixelRow};
 use crate::scene::{Hit, Scene};
 use crate::sink::RowSink;
-use crate::span::{Margin, Silhouette};
+use crate::span::{IntCut, Margin, Silhouette};
 use crate::sphere::Sphere;
 use crate::stepping::Stepper;
 use crate::vec3::Vec3;
@@ -117,11 +117,12 @@ pub(crate) struct IntSphere {
     dd: i128,
     /// The object colour's channels.
     rgb: [u8; 3],
-    /// Where on the image its rays can hit it (the `f32` silhouette, enlarged to cover
-    /// the quantisation's 1/16 pixel), and the rows `[j0, j1)` outside which it has no
-    /// span ([`Silhouette::rows`]: a row skips the sphere without soft float).
-    silhouette: Silhouette,
+    /// Where on the image its rays can hit it: the rows `[j0, j1)` outside which it has
+    /// no span ([`Silhouette::rows`]) and the cut of each row ([`IntCut`]), both of the
+    /// `f32` silhouette enlarged to cover the quantisation's 1/16 pixel; a row finds
+    /// its columns without soft float.
     rows: (u32, u32),
+    cut: IntCut,
 }
 
 /// The integer kernel's per-frame constants. Not generic over the scene's capacity:
@@ -443,6 +444,7 @@ fn plan(
         } else {
             Silhouette::All
         };
+        let rows = silhouette.rows(camera.size().height);
         let _ = spheres.push(IntSphere {
             index,
             lx: lx as i32,
@@ -455,8 +457,8 @@ fn plan(
             c,
             dd: 2 * i128::from(a2) * i128::from(s_col * s_col),
             rgb: [s.color.r(), s.color.g(), s.color.b()],
-            silhouette,
-            rows: silhouette.rows(camera.size().height),
+            rows,
+            cut: silhouette.int_cut(rows),
         });
     }
     Some(Plan {
@@ -834,7 +836,7 @@ fn activate<'s>(
         if j < sp.rows.0 || j >= sp.rows.1 {
             continue;
         }
-        let Some((lo, hi)) = sp.silhouette.row_span(j, 0, width) else {
+        let Some((lo, hi)) = sp.cut.row_span(j, width) else {
             continue;
         };
         let (lo, hi) = (lo.max(frame.i0), hi.min(frame.i1));

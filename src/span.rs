@@ -23,7 +23,9 @@
 //! The ellipse coefficients are computed in `f64` once per frame (about a hundred
 //! operations per sphere: cheap even in software floating point on a Cortex-M4), the
 //! per-row cut in `f32` with its rounding covered by a relative slack on the squared
-//! half-width and one extra column on each side.
+//! half-width and one extra column on each side. The integer kernel cuts the same
+//! ellipse in fixed point ([`IntCut`]: no soft float per row on a chip without an FPU),
+//! rounding every step outward.
 //!
 //! When the enlarged sphere contains the eye or crosses the plane through the eye
 //! parallel to the image, its silhouette is not a bounded ellipse (a parabola, a
@@ -335,10 +337,148 @@ impl Silhouette {
     }
 }
 
+/// A silhouette's per-row cut in integer arithmetic, for the integer kernel: on a chip
+/// without an FPU the `f32` cut ([`Silhouette::row_span`]) is a dozen soft-float calls
+/// per sphere and row (≈ 1,500 instructions on a Cortex-M0), this one a few 32-bit
+/// multiplies and one integer square root.
+///
+/// ## Why it culls nothing a hit can reach
+///
+/// Its columns contain those of `row_span`'s formula evaluated **exactly** on the
+/// stored `f32` coefficients — `xc ± (hw + pad)` with `xc = xc0 + kx·dy`,
+/// `hw² = h0·(1 + 2⁻¹⁶) − q·dy²`, `pad = 1 + (|xc0| + |kx·dy| + hw)·2⁻²⁰`,
+/// `dy = j − y0` — and that interval holds every column the enlarged silhouette holds:
+/// the coefficients' own `f32` rounding (relative `2⁻²⁴`, `xc0` within `2⁻⁴`) is far
+/// inside the slack `2⁻¹⁶·h0` and the pad's column, which were sized to cover it and
+/// the per-row `f32` rounding besides. Every step below rounds outward:
+/// - `dy·2¹²` lies in `(dy₁₂ − 1, dy₁₂]` with `dy₁₂ = 2¹²·j − ⌊2¹²·y0⌋` (exact), so
+///   `m = dy₁₂ − 1` (or `−dy₁₂`) bounds `2¹²·|dy|` from below;
+/// - `q·dy² ≥ ⌊q·2²⁴⌋·m²/2⁴⁸`, floored again to `2⁻³²`, and `h0·(1 + 2⁻¹⁶)` is taken
+///   rounded up to `2⁻³²`: an upper bound of `hw²`, rounded up to `2⁻⁶` and its root
+///   up to `2⁻³` ([`isqrt32`](crate::fixed::isqrt32), exact, plus one where not a
+///   square);
+/// - the centre `xc0 + kx·dy` from `xc0` and `kx` rounded to `2⁻¹⁶` and `dy₁₂`:
+///   within `e = 2⁻¹⁷ + 2⁻¹⁷·|dy| + (|kx| + 2⁻¹⁷)·2⁻¹² + 2⁻¹⁶` (the last the shift's
+///   floor), taken at the sphere's largest `|dy|` ([`Silhouette::rows`]) and added to
+///   the pad with the pad's relative part at its largest;
+/// - `lo = ⌊xc − hw − pad⌋`, `hi = ⌊xc + hw + pad⌋ + 1`.
+///
+/// Where the ranges that keep these in 64 bits do not hold (`q ≥ 2⁸`,
+/// `h0 ≥ 2³¹`, `|kx| ≥ 2¹⁵`, `|dy| ≥ 2¹⁵`) or a coefficient is not finite, every column
+/// ([`IntCut::All`]): slower, never wrong. Test: `int_cut_holds_the_exact_row_span`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum IntCut {
+    /// Every column of every row.
+    All,
+    /// The cut's fixed-point coefficients (module of [`IntCut`] for their roundings).
+    Ellipse {
+        /// `⌊2¹²·y0⌋`.
+        y12: i64,
+        /// `⌊2²⁴·q⌋`.
+        q24: u32,
+        /// `⌈2³²·h0·(1 + 2⁻¹⁶)⌉`.
+        h32: u64,
+        /// `round(2¹⁶·xc0)`, `round(2¹⁶·kx)` and `⌈2¹⁶·(pad + e)⌉` at the largest `|dy|`.
+        xc16: i64,
+        kx16: i64,
+        pad16: i64,
+    },
+}
+
+impl Silhouette {
+    /// The integer cut of this silhouette for the rows `[j0, j1)` ([`Self::rows`]).
+    pub(crate) fn int_cut(&self, (j0, j1): (u32, u32)) -> IntCut {
+        let Silhouette::Ellipse {
+            y0i,
+            y0f,
+            q,
+            h0,
+            xc0,
+            kx,
+        } = *self
+        else {
+            return IntCut::All;
+        };
+        let [y0i, y0f, q, h0, xc0, kx] = [y0i, y0f, q, h0, xc0, kx].map(f64::from);
+        let y0 = y0i + y0f;
+        let dy_max = (f64::from(j0) - y0).abs().max((f64::from(j1) - y0).abs());
+        // h0·(1 + 2⁻¹⁶) rounded up (two f64 roundings of 2⁻⁵³ each, under 2⁻⁵⁰).
+        let h0_up = h0 * (1.0 + TWO_M16) * (1.0 + TWO_M50);
+        let hw_max = libm::sqrt(h0_up.max(0.0));
+        let centre_err = TWO_M17 + TWO_M17 * dy_max + (kx.abs() + TWO_M17) / 4096.0 + TWO_M16;
+        let pad = 1.0 + (xc0.abs() + kx.abs() * dy_max + hw_max) * TWO_M20 + centre_err;
+        // The comparisons also reject NaN.
+        if !(q > 0.0
+            && q < 256.0
+            && h0_up < 2_147_483_648.0
+            && kx.abs() < 32_768.0
+            && xc0.abs() <= 1_048_576.0
+            && y0i.abs() <= 1_048_576.0
+            && dy_max < 32_768.0
+            && pad < 16.0)
+        {
+            return IntCut::All;
+        }
+        IntCut::Ellipse {
+            // Exact: y0i·2¹² is an integer, y0f·2¹² is exact in f64.
+            y12: (y0i * 4096.0) as i64 + libm::floor(y0f * 4096.0) as i64,
+            q24: libm::floor(q * 16_777_216.0) as u32,
+            h32: libm::ceil(h0_up.max(0.0) * 4_294_967_296.0) as u64,
+            xc16: libm::round(xc0 * 65_536.0) as i64,
+            kx16: libm::round(kx * 65_536.0) as i64,
+            pad16: libm::ceil(pad * 65_536.0) as i64,
+        }
+    }
+}
+
+impl IntCut {
+    /// The columns `[lo, hi)` of row `j` (clamped to `[0, width)`) whose rays can hit
+    /// the sphere; `None` if none can.
+    #[inline]
+    pub(crate) fn row_span(&self, j: u32, width: u32) -> Option<(u32, u32)> {
+        use crate::fixed::{isqrt32, mul_wide};
+        let IntCut::Ellipse {
+            y12,
+            q24,
+            h32,
+            xc16,
+            kx16,
+            pad16,
+        } = *self
+        else {
+            return Some((0, width));
+        };
+        // 2¹²·dy in (dy12 − 1, dy12]; m ≤ 2¹²·|dy| < 2²⁷.
+        let dy12 = (i64::from(j) << 12) - y12;
+        let m = (if dy12 > 0 { dy12 - 1 } else { -dy12 }) as u32;
+        let m2 = mul_wide(m, m);
+        // ⌊q24·m²/2¹⁶⌋ ≤ 2³²·q·dy² (q24·m² < 2⁸⁶).
+        let q_dy2 = ((u128::from(mul_wide(q24, (m2 >> 32) as u32)) << 32)
+            + u128::from(mul_wide(q24, m2 as u32)))
+            >> 16;
+        // 2³²·hw² at most h32 − q_dy2 (below zero: no column), then 2⁶·hw² rounded up.
+        let hw2 = u128::from(h32).checked_sub(q_dy2)? as u64;
+        let v = (hw2 >> 26) + u64::from(hw2 & ((1 << 26) - 1) != 0);
+        let Ok(v) = u32::try_from(v) else {
+            return Some((0, width));
+        };
+        // ⌈√v⌉ = 2³·hw rounded up, as 2¹⁶·hw.
+        let r = isqrt32(v);
+        let hw16 = i64::from(r + u32::from(r * r < v)) << 13;
+        let xc = xc16 + ((kx16 * dy12) >> 12);
+        let w = i64::from(width);
+        let lo = ((xc - hw16 - pad16) >> 16).clamp(0, w) as u32;
+        let hi = (((xc + hw16 + pad16) >> 16) + 1).clamp(0, w) as u32;
+        (lo < hi).then_some((lo, hi))
+    }
+}
+
 const TWO_M10: f64 = 1.0 / 1024.0;
 const TWO_M16: f64 = 1.0 / 65_536.0;
 const TWO_M17: f64 = 1.0 / 131_072.0;
 const TWO_M18: f64 = 1.0 / 262_144.0;
+const TWO_M20: f64 = 1.0 / 1_048_576.0;
+const TWO_M50: f64 = 1.0 / 1_125_899_906_842_624.0;
 
 /// The enlarged silhouette (`INNER`: shrunk) as an ellipse, or `None` when it is not a
 /// bounded ellipse. The side is a const: a firmware that only culls links only the
@@ -460,6 +600,113 @@ mod tests {
             state ^= state << 17;
             lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
         }
+    }
+
+    /// The integer cut holds every column of `row_span`'s formula evaluated exactly (in
+    /// `f64` from the stored coefficients, with its slack and pad), on every row of
+    /// [`Silhouette::rows`], and is at most a column wider on each side: random spheres
+    /// and cameras, random coefficients (thin, tall, sheared, off the image's ends),
+    /// and the ranges where it gives up to every column.
+    #[test]
+    fn int_cut_holds_the_exact_row_span() {
+        let mut next = uniform(0x9e37_79b9_7f4a_7c15);
+        let mut rows_checked = 0;
+        let mut check = |sil: Silhouette, (w, h): (u32, u32)| {
+            let rows = sil.rows(h);
+            let cut = sil.int_cut(rows);
+            let Silhouette::Ellipse {
+                y0i,
+                y0f,
+                q,
+                h0,
+                xc0,
+                kx,
+            } = sil
+            else {
+                assert_eq!(cut, IntCut::All);
+                return;
+            };
+            for j in rows.0..rows.1 {
+                let dy = (f64::from(j) - f64::from(y0i)) - f64::from(y0f);
+                let hw2 = f64::from(h0) * (1.0 + TWO_M16) - f64::from(q) * dy * dy;
+                let got = cut.row_span(j, w);
+                if hw2 < 0.0 {
+                    continue;
+                }
+                let hw = hw2.sqrt();
+                let shift = f64::from(kx) * dy;
+                let xc = f64::from(xc0) + shift;
+                let pad = 1.0 + (f64::from(xc0).abs() + shift.abs() + hw) * TWO_M20;
+                let (lo, hi) = ((xc - hw - pad).ceil(), (xc + hw + pad).floor());
+                let (lo, hi) = (lo.max(0.0), hi.min(f64::from(w) - 1.0));
+                if lo > hi {
+                    continue;
+                }
+                rows_checked += 1;
+                let (glo, ghi) = got.unwrap_or_else(|| panic!("{sil:?}: row {j} empty"));
+                assert!(
+                    f64::from(glo) <= lo && f64::from(ghi) > hi,
+                    "{sil:?}: row {j}: {glo}..{ghi} misses {lo}..={hi}"
+                );
+                if cut != IntCut::All {
+                    assert!(
+                        f64::from(glo) >= lo - 2.0 && f64::from(ghi) <= hi + 3.0,
+                        "{sil:?}: row {j}: {glo}..{ghi} much wider than {lo}..={hi}"
+                    );
+                }
+            }
+        };
+        for _ in 0..400 {
+            let size = Size::new(next(1.0, 300.0) as u32, next(1.0, 300.0) as u32);
+            let eye = Vec3::new(next(-2.0, 2.0), next(-2.0, 2.0), next(4.0, 9.0));
+            let Ok(camera) = Camera::new(
+                eye,
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+                next(0.2, 2.5),
+                size,
+            ) else {
+                continue;
+            };
+            let centre = Vec3::new(next(-6.0, 6.0), next(-6.0, 6.0), next(-6.0, 3.0));
+            let radius = next(0.0, 1.0).powi(3) * 3.0;
+            let sil = Silhouette::new(centre - eye, radius, &camera, Margin::Linear, next(0.0, 0.01));
+            check(sil, (size.width, size.height));
+        }
+        for _ in 0..3_000 {
+            let y0 = next(-500.0, 3_000.0);
+            let sil = Silhouette::Ellipse {
+                y0i: y0.floor(),
+                y0f: y0 - y0.floor(),
+                q: next(0.0, 1.0).powi(4) * 300.0 + f32::MIN_POSITIVE,
+                h0: next(0.0, 1.0).powi(3) * 4.0e6,
+                xc0: next(-500.0, 3_000.0),
+                kx: next(-3.0, 3.0),
+            };
+            check(sil, (2_500, 2_500));
+        }
+        assert!(rows_checked > 100_000, "too few rows checked: {rows_checked}");
+        // Out of the fixed-point ranges: every column.
+        let ellipse = |y0i: f32, q: f32, h0: f32, kx: f32| Silhouette::Ellipse {
+            y0i,
+            y0f: 0.25,
+            q,
+            h0,
+            xc0: 5.0,
+            kx,
+        };
+        assert_ne!(ellipse(10.0, 1.0, 100.0, 0.5).int_cut((0, 48)), IntCut::All);
+        for sil in [
+            ellipse(10.0, 300.0, 100.0, 0.5),
+            ellipse(10.0, 1.0, 3.0e9, 0.5),
+            ellipse(10.0, 1.0, 100.0, 4.0e4),
+            ellipse(10.0, f32::NAN, 100.0, 0.5),
+            ellipse(1.0e5, 1.0, 100.0, 0.5),
+            Silhouette::All,
+        ] {
+            assert_eq!(sil.int_cut((0, 48)), IntCut::All, "{sil:?}");
+        }
+        assert_eq!(IntCut::All.row_span(7, 48), Some((0, 48)));
     }
 
     /// `rows` is exactly the set of rows passing `row_span`'s test, so no row outside

@@ -354,7 +354,7 @@ impl Silhouette {
 /// - `dy·2¹²` lies in `(dy₁₂ − 1, dy₁₂]` with `dy₁₂ = 2¹²·j − ⌊2¹²·y0⌋` (exact), so
 ///   `m = dy₁₂ − 1` (or `−dy₁₂`) bounds `2¹²·|dy|` from below;
 /// - `q·dy² ≥ ⌊q·2²⁴⌋·m²/2⁴⁸`, floored again to `2⁻³²`, and `h0·(1 + 2⁻¹⁶)` is taken
-///   rounded up to `2⁻³²`: an upper bound of `hw²`, rounded up to `2⁻⁶` and its root
+///   rounded up to `2⁻⁸`: an upper bound of `hw²`, rounded up to `2⁻⁶` and its root
 ///   up to `2⁻³` ([`isqrt32`](crate::fixed::isqrt32), exact, plus one where not a
 ///   square);
 /// - the centre `xc0 + kx·dy` from `xc0` and `kx` rounded to `2⁻¹⁶` and `dy₁₂`:
@@ -363,9 +363,10 @@ impl Silhouette {
 ///   the pad with the pad's relative part at its largest;
 /// - `lo = ⌊xc − hw − pad⌋`, `hi = ⌊xc + hw + pad⌋ + 1`.
 ///
-/// Where the ranges that keep these in 64 bits do not hold (`q ≥ 2⁸`,
-/// `h0 ≥ 2³¹`, `|kx| ≥ 2¹⁵`, `|dy| ≥ 2¹⁵`) or a coefficient is not finite, every column
-/// ([`IntCut::All`]): slower, never wrong. Test: `int_cut_holds_the_exact_row_span`.
+/// Where the ranges that keep its coefficients in 32 bits and its products in 64 do
+/// not hold (`q ≥ 2⁸`, `h0 ≥ 2²⁴`, `|kx|, |xc0|, |dy| ≥ 2¹⁵`, `|y0| > 2¹⁸`) or a
+/// coefficient is not finite, every column ([`IntCut::All`]): slower, never wrong.
+/// Test: `int_cut_holds_the_exact_row_span`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum IntCut {
     /// Every column of every row.
@@ -373,15 +374,15 @@ pub(crate) enum IntCut {
     /// The cut's fixed-point coefficients (module of [`IntCut`] for their roundings).
     Ellipse {
         /// `⌊2¹²·y0⌋`.
-        y12: i64,
+        y12: i32,
         /// `⌊2²⁴·q⌋`.
         q24: u32,
-        /// `⌈2³²·h0·(1 + 2⁻¹⁶)⌉`.
-        h32: u64,
+        /// `⌈2⁸·h0·(1 + 2⁻¹⁶)⌉`.
+        h8: u32,
         /// `round(2¹⁶·xc0)`, `round(2¹⁶·kx)` and `⌈2¹⁶·(pad + e)⌉` at the largest `|dy|`.
-        xc16: i64,
-        kx16: i64,
-        pad16: i64,
+        xc16: i32,
+        kx16: i32,
+        pad16: i32,
     },
 }
 
@@ -410,10 +411,10 @@ impl Silhouette {
         // The comparisons also reject NaN.
         if !(q > 0.0
             && q < 256.0
-            && h0_up < 2_147_483_648.0
+            && h0_up < 16_777_216.0
             && kx.abs() < 32_768.0
-            && xc0.abs() <= 1_048_576.0
-            && y0i.abs() <= 1_048_576.0
+            && xc0.abs() < 32_768.0
+            && y0i.abs() <= 262_144.0
             && dy_max < 32_768.0
             && pad < 16.0)
         {
@@ -421,12 +422,12 @@ impl Silhouette {
         }
         IntCut::Ellipse {
             // Exact: y0i·2¹² is an integer, y0f·2¹² is exact in f64.
-            y12: (y0i * 4096.0) as i64 + libm::floor(y0f * 4096.0) as i64,
+            y12: (y0i * 4096.0) as i32 + libm::floor(y0f * 4096.0) as i32,
             q24: libm::floor(q * 16_777_216.0) as u32,
-            h32: libm::ceil(h0_up.max(0.0) * 4_294_967_296.0) as u64,
-            xc16: libm::round(xc0 * 65_536.0) as i64,
-            kx16: libm::round(kx * 65_536.0) as i64,
-            pad16: libm::ceil(pad * 65_536.0) as i64,
+            h8: libm::ceil(h0_up.max(0.0) * 256.0) as u32,
+            xc16: libm::round(xc0 * 65_536.0) as i32,
+            kx16: libm::round(kx * 65_536.0) as i32,
+            pad16: libm::ceil(pad * 65_536.0) as i32,
         }
     }
 }
@@ -440,7 +441,7 @@ impl IntCut {
         let IntCut::Ellipse {
             y12,
             q24,
-            h32,
+            h8,
             xc16,
             kx16,
             pad16,
@@ -449,15 +450,16 @@ impl IntCut {
             return Some((0, width));
         };
         // 2¹²·dy in (dy12 − 1, dy12]; m ≤ 2¹²·|dy| < 2²⁷.
-        let dy12 = (i64::from(j) << 12) - y12;
+        let dy12 = (i64::from(j) << 12) - i64::from(y12);
         let m = (if dy12 > 0 { dy12 - 1 } else { -dy12 }) as u32;
         let m2 = mul_wide(m, m);
         // ⌊q24·m²/2¹⁶⌋ ≤ 2³²·q·dy² (q24·m² < 2⁸⁶).
         let q_dy2 = ((u128::from(mul_wide(q24, (m2 >> 32) as u32)) << 32)
             + u128::from(mul_wide(q24, m2 as u32)))
             >> 16;
-        // 2³²·hw² at most h32 − q_dy2 (below zero: no column), then 2⁶·hw² rounded up.
-        let hw2 = u128::from(h32).checked_sub(q_dy2)? as u64;
+        // 2³²·hw² at most 2²⁴·h8 − q_dy2 (below zero: no column), then 2⁶·hw² rounded
+        // up.
+        let hw2 = (u128::from(h8) << 24).checked_sub(q_dy2)? as u64;
         let v = (hw2 >> 26) + u64::from(hw2 & ((1 << 26) - 1) != 0);
         let Ok(v) = u32::try_from(v) else {
             return Some((0, width));
@@ -465,8 +467,9 @@ impl IntCut {
         // ⌈√v⌉ = 2³·hw rounded up, as 2¹⁶·hw.
         let r = isqrt32(v);
         let hw16 = i64::from(r + u32::from(r * r < v)) << 13;
-        let xc = xc16 + ((kx16 * dy12) >> 12);
+        let xc = i64::from(xc16) + ((i64::from(kx16) * dy12) >> 12);
         let w = i64::from(width);
+        let pad16 = i64::from(pad16);
         let lo = ((xc - hw16 - pad16) >> 16).clamp(0, w) as u32;
         let hi = (((xc + hw16 + pad16) >> 16) + 1).clamp(0, w) as u32;
         (lo < hi).then_some((lo, hi))
@@ -698,10 +701,10 @@ mod tests {
         assert_ne!(ellipse(10.0, 1.0, 100.0, 0.5).int_cut((0, 48)), IntCut::All);
         for sil in [
             ellipse(10.0, 300.0, 100.0, 0.5),
-            ellipse(10.0, 1.0, 3.0e9, 0.5),
+            ellipse(10.0, 1.0, 3.0e7, 0.5),
             ellipse(10.0, 1.0, 100.0, 4.0e4),
             ellipse(10.0, f32::NAN, 100.0, 0.5),
-            ellipse(1.0e5, 1.0, 100.0, 0.5),
+            ellipse(3.0e5, 1.0, 100.0, 0.5),
             Silhouette::All,
         ] {
             assert_eq!(sil.int_cut((0, 48)), IntCut::All, "{sil:?}");

@@ -36,8 +36,8 @@
 //! row a quadratic in `x`: `D = A₂x² + A₁x + A₀` with `A₂ = ℓx² − c`. It is stepped by
 //! `D += Δ; Δ += 2·A₂·s²` (`s = 2ᵏ⁺¹`), exactly in `i128`, and `b += ℓx·s` in `i64`:
 //! per sphere and pixel five 32-bit add-with-carry chains, no multiply. `D` and `Δ` are
-//! evaluated directly at each span's first visible column (so a pixel never depends on
-//! the clip). A hit is `D ≥ 0`; the rule admits only spheres wholly in front of the eye,
+//! evaluated directly at each span's first visible column, as `b² − a·c` and
+//! `ℓx·s·(2b + ℓx·s) − c·(2xs + s²)` (so a pixel never depends on the clip). A hit is `D ≥ 0`; the rule admits only spheres wholly in front of the eye,
 //! so every hit has `t > 0`.
 //!
 //! ## Depth and shade
@@ -661,11 +661,66 @@ fn mul_wide_halves(x: u32, y: u32) -> u64 {
     (u64::from(hi) << 32) | u64::from(lo)
 }
 
+/// `x·y` of two `i32` as an `i64`: on ARMv6-M from the magnitudes' 32×32-bit product
+/// ([`mul_i32_wide_halves`]; an `i64` multiply there is `__aeabi_lmul`, a full
+/// 64×64-bit product); elsewhere the operator.
+#[inline(always)]
+pub(crate) fn mul_i32_wide(x: i32, y: i32) -> i64 {
+    if ARMV6M {
+        mul_i32_wide_halves(x, y)
+    } else {
+        i64::from(x) * i64::from(y)
+    }
+}
+
+/// [`mul_i32_wide`] from [`mul_wide_halves`] of the magnitudes, the sign applied
+/// after. Exact for every `x`, `y`: `|x·y| ≤ 2⁶²`.
+#[inline(always)]
+fn mul_i32_wide_halves(x: i32, y: i32) -> i64 {
+    let p = mul_wide_halves(x.unsigned_abs(), y.unsigned_abs()) as i64;
+    if (x < 0) != (y < 0) {
+        -p
+    } else {
+        p
+    }
+}
+
+/// `x·y` of two `i64` as an `i128`: on ARMv6-M from the magnitudes' 32-bit halves
+/// ([`mul_i64_wide_halves`]; the operator there is a chain of `__aeabi_lmul` calls);
+/// elsewhere the operator.
+#[inline(always)]
+pub(crate) fn mul_i64_wide(x: i64, y: i64) -> i128 {
+    if ARMV6M {
+        mul_i64_wide_halves(x, y)
+    } else {
+        i128::from(x) * i128::from(y)
+    }
+}
+
+/// [`mul_i64_wide`] from four [`mul_wide_halves`] of the magnitudes' 32-bit halves
+/// (`x₁y₁·2⁶⁴ + (x₁y₀ + x₀y₁)·2³² + x₀y₀`, summed in `u128`), the sign applied after.
+/// Exact for every `x`, `y`: `|x·y| ≤ 2¹²⁶`.
+#[inline(always)]
+fn mul_i64_wide_halves(x: i64, y: i64) -> i128 {
+    let (xu, yu) = (x.unsigned_abs(), y.unsigned_abs());
+    let (x1, x0) = ((xu >> 32) as u32, xu as u32);
+    let (y1, y0) = ((yu >> 32) as u32, yu as u32);
+    let mid = u128::from(mul_wide_halves(x1, y0)) + u128::from(mul_wide_halves(x0, y1));
+    let p = (u128::from(mul_wide_halves(x1, y1)) << 64) + (mid << 32) + u128::from(mul_wide_halves(x0, y0));
+    let p = p as i128;
+    if (x < 0) != (y < 0) {
+        -p
+    } else {
+        p
+    }
+}
+
 /// Whether the target is ARMv6-M (Cortex-M0, M0+): no divide instruction, no
 /// 32×32→64-bit multiply, no 64-bit shifts but by library calls. Told apart by its
 /// missing compare-and-swap atomics (ARMv7-M and ARMv8-M Baseline have both those
-/// and compare-and-swap). There [`div_q16`], [`mul_wide`] and the word-wise shifts
-/// replace the operators (same results; elsewhere the operators are cheaper).
+/// and compare-and-swap). There [`div_q16`], the wide products ([`mul_wide`],
+/// [`mul_i32_wide`], [`mul_i64_wide`]) and the word-wise shifts replace the operators
+/// (same results; elsewhere the operators are cheaper).
 const ARMV6M: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
 
 /// `R[k] = ⌊2²³/(k + 257)⌋`, the reciprocals of [`div_q16`] (`< 2¹⁵`): a lower bound
@@ -831,7 +886,7 @@ fn activate<'s>(
     active.clear();
     let width = frame.camera.size().width;
     let (mut lo_all, mut hi_all) = (frame.i1, frame.i0);
-    let s = i128::from(2i32 << frame.k);
+    let s = 2i32 << frame.k;
     for sp in frame.spheres.iter() {
         if j < sp.rows.0 || j >= sp.rows.1 {
             continue;
@@ -845,23 +900,22 @@ fn activate<'s>(
         }
         lo_all = lo_all.min(lo);
         hi_all = hi_all.max(hi);
-        let x = i64::from((2 * lo as i32 + 1 - width as i32) << frame.k);
-        // D(x) = A₂x² + A₁x + A₀ with A₁ = 2ℓx·β, A₀ = β² − c·α, β = ℓy·y + ℓz·F
-        // (|β| ≤ 2⁵¹).
-        let beta = i64::from(sp.ly) * i64::from(y) + i64::from(sp.lz) * i64::from(frame.f);
-        let a1 = 2 * i128::from(sp.lx) * i128::from(beta);
-        let a0 = i128::from(beta) * i128::from(beta) - i128::from(sp.c) * i128::from(alpha);
-        let xw = i128::from(x);
-        let a2 = i128::from(i64::from(sp.lx) * i64::from(sp.lx) - sp.c);
-        let disc = (a2 * xw + a1) * xw + a0;
-        // Δ(x) = D(x + s) − D(x) = A₂(2xs + s²) + A₁s.
-        let delta = a2 * (2 * xw * s + s * s) + a1 * s;
+        let x = (2 * lo as i32 + 1 - width as i32) << frame.k;
+        // b = ℓ·d = ℓx·x + β with β = ℓy·y + ℓz·F (|b|, |β| ≤ 2⁵¹) and a = x² + α.
+        let beta = mul_i32_wide(sp.ly, y) + mul_i32_wide(sp.lz, frame.f);
+        let b = mul_i32_wide(sp.lx, x) + beta;
+        let a = mul_i32_wide(x, x) + alpha;
+        // D = b² − a·c, and Δ = D(x + s) − D(x) = ℓx·s·(2b + ℓx·s) − c·(2xs + s²):
+        // exact, the same integers as the quadratic in x the row steps.
+        let disc = mul_i64_wide(b, b) - mul_i64_wide(a, sp.c);
+        let delta = mul_i64_wide(sp.lx_s, 2 * b + sp.lx_s)
+            - mul_i64_wide(sp.c, 2 * mul_i32_wide(x, s) + mul_i32_wide(s, s));
         let _ = active.push(Active {
             lo,
             len: hi - lo,
             disc,
             delta,
-            b: i64::from(sp.lx) * x + beta,
+            b,
             sphere: sp,
         });
     }
@@ -915,17 +969,18 @@ impl<'c> IntRow<'_, '_, 'c> {
         let mut best: Option<(&'c IntSphere, i64)> = None;
         for act in self.active.iter_mut() {
             if i.wrapping_sub(act.lo) < act.len {
-                let (disc, b) = (act.disc, act.b);
                 let sp = act.sphere;
-                act.disc = disc + act.delta;
-                act.delta += sp.dd;
-                act.b = b + sp.lx_s;
-                if disc >= 0 {
-                    let t = b - isqrt(disc as u128, u32::from(sp.h)) as i64;
+                // The test at this column, then the step to the next (in place: no
+                // copy of D and b stays live across the root).
+                if act.disc >= 0 {
+                    let t = act.b - isqrt(act.disc as u128, u32::from(sp.h)) as i64;
                     if best.is_none_or(|(_, bt)| t < bt) {
                         best = Some((sp, t));
                     }
                 }
+                act.disc += act.delta;
+                act.delta += sp.dd;
+                act.b += sp.lx_s;
             }
         }
         let color = match best {
@@ -1105,6 +1160,41 @@ mod tests {
         for &a in &values {
             for &b in &values {
                 assert_eq!(mul_wide_halves(a, b), u64::from(a) * u64::from(b), "{a}·{b}");
+            }
+        }
+    }
+
+    /// The signed wide products from halves (the ARMv6-M code) equal the operators for
+    /// operands of every sign and size: zero, ±1, the extremes (`MIN`, whose magnitude
+    /// is not an `i32`/`i64`), the halves' boundaries and random values of every width.
+    #[test]
+    fn signed_wide_products_equal_the_operators() {
+        let mut x = 0x5851_f42d_4c95_7f2du64;
+        let mut values = std::vec![0i64, 1, -1, 0xffff_ffff, -0xffff_ffff, 1 << 32, -(1 << 32)];
+        values.extend([
+            i64::MAX,
+            i64::MIN,
+            i64::MIN + 1,
+            i64::from(i32::MAX),
+            i64::from(i32::MIN),
+        ]);
+        for _ in 0..1_000 {
+            xorshift(&mut x);
+            values.push((x as i64) >> (x % 64));
+        }
+        for &a in &values {
+            for &b in &values {
+                assert_eq!(
+                    mul_i64_wide_halves(a, b),
+                    i128::from(a) * i128::from(b),
+                    "{a}·{b}"
+                );
+                let (a32, b32) = (a as i32, b as i32);
+                assert_eq!(
+                    mul_i32_wide_halves(a32, b32),
+                    i64::from(a32) * i64::from(b32),
+                    "{a32}·{b32}"
+                );
             }
         }
     }

@@ -437,7 +437,7 @@ impl IntCut {
     /// the sphere; `None` if none can.
     #[inline]
     pub(crate) fn row_span(&self, j: u32, width: u32) -> Option<(u32, u32)> {
-        use crate::fixed::{isqrt32, mul_wide};
+        use crate::fixed::{isqrt32, mul_i32_wide, mul_wide};
         let IntCut::Ellipse {
             y12,
             q24,
@@ -467,7 +467,8 @@ impl IntCut {
         // ⌈√v⌉ = 2³·hw rounded up, as 2¹⁶·hw.
         let r = isqrt32(v);
         let hw16 = i64::from(r + u32::from(r * r < v)) << 13;
-        let xc = i64::from(xc16) + ((i64::from(kx16) * dy12) >> 12);
+        // |dy12| < 2²⁸ (the rows' |dy| < 2¹⁵): an i32.
+        let xc = i64::from(xc16) + (mul_i32_wide(kx16, dy12 as i32) >> 12);
         let w = i64::from(width);
         let pad16 = i64::from(pad16);
         let lo = ((xc - hw16 - pad16) >> 16).clamp(0, w) as u32;

@@ -37,8 +37,9 @@
 //! `D += Δ; Δ += 2·A₂·s²` (`s = 2ᵏ⁺¹`), exactly in `i128`, and `b += ℓx·s` in `i64`:
 //! per sphere and pixel five 32-bit add-with-carry chains, no multiply. `D` and `Δ` are
 //! evaluated directly at each span's first visible column, as `b² − a·c` and
-//! `ℓx·s·(2b + ℓx·s) − c·(2xs + s²)` (so a pixel never depends on the clip). A hit is `D ≥ 0`; the rule admits only spheres wholly in front of the eye,
-//! so every hit has `t > 0`.
+//! `ℓx·s·(2b + ℓx·s) − c·(2xs + s²)` (so a pixel never depends on the clip). A hit is
+//! `D ≥ 0`; the rule admits only spheres wholly in front of the eye, so every hit has
+//! `t > 0`.
 //!
 //! ## Depth and shade
 //!
@@ -46,21 +47,21 @@
 //! every sphere of the pixel) orders the spheres; [`isqrt`] has error `< 2^(h+1)` with
 //! the sphere's per-frame shift `h = ⌈(bits(d_max²·ρ²) − 32)/2⌉` (`D ≤ a·ρ²`: about
 //! `4·|d|·ρ·2⁻¹⁶`). Lab #1 needs `n·(−w) = (ℓz − t·F)/ρ = (ℓz·a − F·T)/(a·ρ)`: formed
-//! from `a` and `T` shifted right by the frame's `p` (so `a >> p < 2³¹` and `T >> p <
-//! 2³²`: 32×32-bit products; the `ℓz/ρ` part is unchanged by it), then divided once in
-//! 32 bits after a per-frame shift `q` ([`nz_q16`]). The shade factor's error against
-//! the quantised sphere is `≤ 2ʰ⁺¹/(F·ρ)` (root, `a ≥ F²`) `+ 2ᵖ/(F·ρ)` (shift) `+
-//! 2/((F² >> p)·ρ >> q) + 2⁻¹⁶` (division, smallest divisor at the image's centre), `+
-//! (ℓz + ρ)·2ᵖ/(F²·ρ)` (the shift of `a` in `T/a`); the quantisation moves the sphere
-//! by `m ≤ √3/2 + ½` (its centre's and radius's rounding, measured per sphere and
-//! frame), which turns the normal by at most `m/ρ` where the hit's half-chord `h` is
-//! large and by `≈ m/h` near the rim: with the rest of the budget `β`, the hits with `h
-//! < g = m/β` form a ring `g²/(2ρ)` wide (λ units) along the silhouette, where the
-//! shade moves with the edge. The rule takes the frame only where the sum is < 2⁻⁹
-//! (under one level of 255, with room for the `f32` result's own rounding) and that
-//! ring, added to the edge bound, is within 1/16 pixel: there the image is that of the
-//! sphere moved by less than 1/16 pixel. Colours are `(c·k + 2¹⁵) >> 16` with `k =
-//! max(n·(−w), 0.3)` in Q16.
+//! from `a` and `T` shifted right by the frame's `p` (so `a >> p < 2³¹` and
+//! `T >> p < 2³²`: 32×32-bit products; the `ℓz/ρ` part is unchanged by it), then
+//! divided once in 32 bits after a per-frame shift `q` ([`nz_q16`]). The shade factor's
+//! error against the quantised sphere is `≤ 2ʰ⁺¹/(F·ρ)` (root, `a ≥ F²`) `+ 2ᵖ/(F·ρ)`
+//! (shift) `+ 2/((F² >> p)·ρ >> q) + 2⁻¹⁶` (division, smallest divisor at the image's
+//! centre), `+ (ℓz + ρ)·2ᵖ/(F²·ρ)` (the shift of `a` in `T/a`); the quantisation moves
+//! the sphere by `m ≤ √3/2 + ½` (its centre's and radius's rounding, measured per
+//! sphere and frame), which turns the normal by at most `m/ρ` where the hit's
+//! half-chord `h` is large and by `≈ m/h` near the rim: with the rest of the budget
+//! `β`, the hits with `h < g = m/β` form a ring `g²/(2ρ)` wide (λ units) along the
+//! silhouette, where the shade moves with the edge. The rule takes the frame only where
+//! the sum is < 2⁻⁹ (under one level of 255, with room for the `f32` result's own
+//! rounding) and that ring, added to the edge bound, is within 1/16 pixel: there the
+//! image is that of the sphere moved by less than 1/16 pixel. Colours are
+//! `(c·k + 2¹⁵) >> 16` with `k = max(n·(−w), 0.3)` in Q16.
 //!
 //! Where the rule does not hold (non-square pixels, an eye inside or beside a sphere,
 //! a sphere too small or too close for the bounds at the scene's extent, a scene with

@@ -371,7 +371,7 @@ impl Silhouette {
 pub(crate) enum IntCut {
     /// Every column of every row.
     All,
-    /// The cut's fixed-point coefficients (module of [`IntCut`] for their roundings).
+    /// The cut's fixed-point coefficients (their roundings: [`IntCut`]).
     Ellipse {
         /// `⌊2¹²·y0⌋`.
         y12: i32,

@@ -350,7 +350,10 @@ impl Silhouette {
 /// `dy = j − y0` — and that interval holds every column the enlarged silhouette holds:
 /// the coefficients' own `f32` rounding (relative `2⁻²⁴`, `xc0` within `2⁻⁴`) is far
 /// inside the slack `2⁻¹⁶·h0` and the pad's column, which were sized to cover it and
-/// the per-row `f32` rounding besides. Every step below rounds outward:
+/// the per-row `f32` rounding besides. What they do not cover (`y0f`'s rounding, up to
+/// `2⁻²⁵` rows, on an ellipse less than `2⁻⁸` rows tall; the `f64` coefficients' own
+/// rounding) is far inside the spare margin of the integer kernel's silhouette, which
+/// is enlarged by at least 1/8 pixel to cover 1/16. Every step below rounds outward:
 /// - `dy·2¹²` lies in `(dy₁₂ − 1, dy₁₂]` with `dy₁₂ = 2¹²·j − ⌊2¹²·y0⌋` (exact), so
 ///   `m = dy₁₂ − 1` (or `−dy₁₂`) bounds `2¹²·|dy|` from below;
 /// - `q·dy² ≥ ⌊q·2²⁴⌋·m²/2⁴⁸`, floored again to `2⁻³²`, and `h0·(1 + 2⁻¹⁶)` is taken
@@ -364,7 +367,7 @@ impl Silhouette {
 /// - `lo = ⌊xc − hw − pad⌋`, `hi = ⌊xc + hw + pad⌋ + 1`.
 ///
 /// Where the ranges that keep its coefficients in 32 bits and its products in 64 do
-/// not hold (`q ≥ 2⁸`, `h0 ≥ 2²⁴`, `|kx|, |xc0|, |dy| ≥ 2¹⁵`, `|y0| > 2¹⁸`) or a
+/// not hold (`q ≥ 2⁸`, `h0 ≥ 2²⁴ − 1`, `|kx|, |xc0|, |dy| ≥ 2¹⁵`, `|y0| > 2¹⁸`) or a
 /// coefficient is not finite, every column ([`IntCut::All`]): slower, never wrong.
 /// Test: `int_cut_holds_the_exact_row_span`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -411,7 +414,7 @@ impl Silhouette {
         // The comparisons also reject NaN.
         if !(q > 0.0
             && q < 256.0
-            && h0_up < 16_777_216.0
+            && h0_up < 16_777_215.0
             && kx.abs() < 32_768.0
             && xc0.abs() < 32_768.0
             && y0i.abs() <= 262_144.0

@@ -609,6 +609,25 @@ mod tests {
         }
     }
 
+    /// A random camera (1–300 pixels each way, eye in front of the origin) and sphere
+    /// (centre around the origin, radius up to 3, cubed toward small): the camera, the
+    /// sphere's eye-relative centre and its radius; `None` where the camera is refused.
+    fn random_view(next: &mut impl FnMut(f32, f32) -> f32) -> Option<(Camera, Vec3, f32)> {
+        let size = Size::new(next(1.0, 300.0) as u32, next(1.0, 300.0) as u32);
+        let eye = Vec3::new(next(-2.0, 2.0), next(-2.0, 2.0), next(4.0, 9.0));
+        let camera = Camera::new(
+            eye,
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            next(0.2, 2.5),
+            size,
+        )
+        .ok()?;
+        let centre = Vec3::new(next(-6.0, 6.0), next(-6.0, 6.0), next(-6.0, 3.0));
+        let radius = next(0.0, 1.0).powi(3) * 3.0;
+        Some((camera, centre - eye, radius))
+    }
+
     /// The integer cut holds every column of `row_span`'s formula evaluated exactly (in
     /// `f64` from the stored coefficients, with its slack and pad), on every row of
     /// [`Silhouette::rows`], and is at most a column wider on each side: random spheres
@@ -664,20 +683,11 @@ mod tests {
             }
         };
         for _ in 0..400 {
-            let size = Size::new(next(1.0, 300.0) as u32, next(1.0, 300.0) as u32);
-            let eye = Vec3::new(next(-2.0, 2.0), next(-2.0, 2.0), next(4.0, 9.0));
-            let Ok(camera) = Camera::new(
-                eye,
-                Vec3::new(0.0, 0.0, 0.0),
-                Vec3::new(0.0, 1.0, 0.0),
-                next(0.2, 2.5),
-                size,
-            ) else {
+            let Some((camera, l, radius)) = random_view(&mut next) else {
                 continue;
             };
-            let centre = Vec3::new(next(-6.0, 6.0), next(-6.0, 6.0), next(-6.0, 3.0));
-            let radius = next(0.0, 1.0).powi(3) * 3.0;
-            let sil = Silhouette::new(centre - eye, radius, &camera, Margin::Linear, next(0.0, 0.01));
+            let size = camera.size();
+            let sil = Silhouette::new(l, radius, &camera, Margin::Linear, next(0.0, 0.01));
             check(sil, (size.width, size.height));
         }
         for _ in 0..3_000 {
@@ -745,25 +755,16 @@ mod tests {
         };
         let mut spans = 0;
         for _ in 0..400 {
-            let size = Size::new(next(1.0, 300.0) as u32, next(1.0, 300.0) as u32);
-            let eye = Vec3::new(next(-2.0, 2.0), next(-2.0, 2.0), next(4.0, 9.0));
-            let Ok(camera) = Camera::new(
-                eye,
-                Vec3::new(0.0, 0.0, 0.0),
-                Vec3::new(0.0, 1.0, 0.0),
-                next(0.2, 2.5),
-                size,
-            ) else {
+            let Some((camera, l, radius)) = random_view(&mut next) else {
                 continue;
             };
-            let centre = Vec3::new(next(-6.0, 6.0), next(-6.0, 6.0), next(-6.0, 3.0));
-            let radius = next(0.0, 1.0).powi(3) * 3.0;
+            let size = camera.size();
             let margin = if next(0.0, 1.0) < 0.5 {
                 0.0
             } else {
                 next(0.0, 0.01)
             };
-            let sil = Silhouette::new(centre - eye, radius, &camera, Margin::Linear, margin);
+            let sil = Silhouette::new(l, radius, &camera, Margin::Linear, margin);
             spans += check(sil, (size.width, size.height));
         }
         // Random coefficients: centres near and past the image's ends, thin and tall.

@@ -326,6 +326,11 @@ impl<const N: usize> ShadowRow<N> {
 }
 
 /// Renders one frame of a scene with lights, planes or mirrors.
+///
+/// Out of line, as `frame::render` is: the per-sphere constants live in this
+/// function's own stack frame, so a render pays for its own method's, not for the
+/// largest of all the methods the one dispatch could have chosen.
+#[inline(never)]
 pub(crate) fn render<
     const N: usize,
     const L: usize,

@@ -1,6 +1,7 @@
-//! The integer kernel alone on a chip without an FPU: `no_panic` with
-//! [`Method::INTEGER`](embedded_raytracer::Method::INTEGER) (same camera from run-time
-//! values, lab scene, `PixelHash`, `panic-never`: links only without a reachable panic).
+//! The integer kernel alone on a chip without an FPU: `no_panic` through
+//! [`Render::draw_integer`](embedded_raytracer::Render::draw_integer), which links no
+//! `f32` render (same camera from run-time values, lab scene, `PixelHash`,
+//! `panic-never`: links only without a reachable panic).
 //!
 //! ```sh
 //! cargo build --release --example no_panic_integer --target thumbv6m-none-eabi
@@ -29,7 +30,7 @@ mod fw {
     #[cfg(target_arch = "arm")]
     use cortex_m_semihosting::{debug, nr, syscall1};
     use embedded_graphics::prelude::*;
-    use embedded_raytracer::{hash::PixelHash, CameraParams, Method, Render, Vec3};
+    use embedded_raytracer::{hash::PixelHash, CameraParams, Render, Vec3};
     use panic_never as _;
     #[cfg(target_arch = "riscv32")]
     use riscv::asm::wfi;
@@ -60,7 +61,7 @@ mod fw {
         60.0 * (core::f32::consts::PI / 180.0),
     ];
     static SIZE: [u32; 2] = [240, 240];
-    /// Where the result goes: the hash, or 0 if the camera was rejected.
+    /// Where the result goes: the hash, or 0 if the camera or the frame was refused.
     static mut RESULT: u64 = 0;
 
     fn input(i: usize) -> f32 {
@@ -83,10 +84,12 @@ mod fw {
         let hash = match params.build() {
             Ok(camera) => {
                 let mut target = PixelHash::new(size);
-                let Ok(()) = Render::new(&scenes::LAB, &camera)
-                    .with_method(Method::INTEGER)
-                    .draw(&mut target);
-                target.hash()
+                // The integer kernel alone: no f32 render linked, 0 where the rule
+                // refuses the frame.
+                match Render::new(&scenes::LAB, &camera).draw_integer(&mut target) {
+                    Ok(()) => target.hash(),
+                    Err(_) => 0,
+                }
             }
             Err(_) => 0,
         };

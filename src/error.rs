@@ -363,6 +363,32 @@ impl fmt::Display for BandError {
 
 impl core::error::Error for BandError {}
 
+/// Why [`Render::draw_integer`](crate::Render::draw_integer) did not draw the frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IntegerError<E> {
+    /// The integer kernel does not take this frame: its per-frame rule (see
+    /// [`Arithmetic::Integer`](crate::Arithmetic::Integer)) does not hold for the scene
+    /// and camera, the scene has lights, planes or mirrors, or the sampling is not
+    /// [`Sampling::Center`](crate::Sampling::Center). Nothing was drawn.
+    Refused,
+    /// The draw target's own error.
+    Target(E),
+}
+
+impl<E: fmt::Display> fmt::Display for IntegerError<E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            IntegerError::Refused => f.write_str(
+                "the integer kernel does not take this frame (its bounds do not hold for the scene and camera, \
+                 the scene has lights, planes or mirrors, or the sampling is not center)",
+            ),
+            IntegerError::Target(e) => write!(f, "draw target: {e}"),
+        }
+    }
+}
+
+impl<E: fmt::Debug + fmt::Display> core::error::Error for IntegerError<E> {}
+
 impl From<SphereError> for SceneError {
     fn from(e: SphereError) -> Self {
         SceneError::Sphere(e)

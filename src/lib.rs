@@ -156,8 +156,8 @@ pub use camera::{Camera, CameraParams};
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
 pub use error::{
-    BandError, CameraError, CameraParam, LightError, MaterialError, ParseMethodError, PlaneError, SceneError,
-    SettingsError, SphereError,
+    BandError, CameraError, CameraParam, IntegerError, LightError, MaterialError, ParseMethodError,
+    PlaneError, SceneError, SettingsError, SphereError,
 };
 pub use light::Light;
 pub use lit::SecondaryOrigin;

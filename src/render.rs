@@ -16,7 +16,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::camera::Camera;
 use crate::dispatch::{dispatch, Visit};
-use crate::error::BandError;
+use crate::error::{BandError, IntegerError};
 use crate::fixed;
 use crate::frame;
 use crate::intersect::{TestStrategy, FD_ANCHOR_INTERVAL};
@@ -328,6 +328,75 @@ impl<const N: usize, C: PixelColor + From<Rgb888>, const L: usize, const P: usiz
         };
         let Ok(()) = self.render(band, Point::zero(), &mut sink);
         Ok(())
+    }
+
+    /// Draws the frame with the integer kernel alone, whatever the render's method, or
+    /// draws nothing and returns [`IntegerError::Refused`] where the kernel's per-frame
+    /// rule does not take it (see [`Arithmetic::Integer`]; as [`Render::arithmetic`]
+    /// would answer `F32`). The pixels are those of [`Drawable::draw`] with
+    /// [`Method::INTEGER`] wherever the rule holds.
+    ///
+    /// For firmware on a chip without an FPU that must stay small: no `f32` render is
+    /// linked (`draw` with `Method::INTEGER` links the `f32` method as its fallback), so
+    /// no soft-float routine is reachable from any pixel loop; the per-frame set-up (the
+    /// camera, the rule, the silhouettes) still computes in floating point, once a frame.
+    ///
+    /// ```
+    /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::{Rgb565, Rgb888}, prelude::*};
+    /// use embedded_raytracer::{Camera, IntegerError, Render, Scene, Sphere, Vec3};
+    ///
+    /// static SCENE: Scene<1> = Scene::from_array(
+    ///     [Sphere::new(Vec3::new(0.0, 0.0, 0.0), 1.0, Rgb888::new(255, 0, 0))],
+    ///     Rgb888::new(0, 0, 0),
+    /// );
+    /// let camera = Camera::new(
+    ///     Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0),
+    ///     0.5, Size::new(16, 16),
+    /// )?;
+    /// let mut display = MockDisplay::<Rgb565>::new();
+    /// Render::new(&SCENE, &camera).draw_integer(&mut display)?;
+    /// assert_eq!(display.get_pixel(Point::new(8, 8)), Some(Rgb565::RED));
+    ///
+    /// // An eye inside the sphere: the rule does not take the frame, nothing is drawn.
+    /// let inside = Camera::new(Vec3::new(0.0, 0.0, 0.5), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0),
+    ///     0.5, Size::new(16, 16))?;
+    /// let mut untouched = MockDisplay::<Rgb565>::new();
+    /// assert_eq!(Render::new(&SCENE, &inside).draw_integer(&mut untouched), Err(IntegerError::Refused));
+    /// assert_eq!(untouched.get_pixel(Point::new(8, 8)), None);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`IntegerError::Refused`] as above (also for a scene with lights, planes or
+    /// mirrors, and for a sampling other than [`Sampling::Center`]); the target's own
+    /// error as [`IntegerError::Target`].
+    pub fn draw_integer<Tg>(&self, target: &mut Tg) -> Result<(), IntegerError<Tg::Error>>
+    where
+        Tg: DrawTarget<Color = C>,
+    {
+        if Scene::<N, L, P, D>::FEATURES || self.sampling != Sampling::Center {
+            return Err(IntegerError::Refused);
+        }
+        let clip = target.bounding_box();
+        let mut sink = DrawSink {
+            target,
+            color: PhantomData,
+        };
+        let spheres = self.scene.spheres();
+        let background = self.scene.background();
+        match fixed::render::<N, _>(
+            spheres,
+            background,
+            self.camera,
+            self.options,
+            clip,
+            self.offset,
+            &mut sink,
+        ) {
+            Some(done) => done.map_err(IntegerError::Target),
+            None => Err(IntegerError::Refused),
+        }
     }
 }
 

@@ -216,3 +216,58 @@ fn grazing_ring_of_a_coarsely_quantised_sphere() {
     let m = reference::compare(&int, &reference::render(&near, &camera));
     exact_where_chosen("near", Arithmetic::Integer, &m);
 }
+
+/// `draw_integer` draws exactly what `draw` with `Method::INTEGER` draws wherever the
+/// rule takes the frame (every standard scene at 240×240, drawn at an offset on a
+/// larger target so the clip cuts it too), and where the rule refuses (grazing; lab
+/// with non-square pixels) it returns `Refused` without writing a pixel.
+#[test]
+fn draw_integer_is_the_integer_method_or_refuses() {
+    use embedded_graphics::prelude::Point;
+    use embedded_raytracer::IntegerError;
+    let draw = |render: Render<'_, { common::MAX_SPHERES }, Rgb888>| {
+        let mut frame = common::Frame::new(Size::new(250, 230));
+        let result = render.with_offset(Point::new(17, -9)).draw_integer(&mut frame);
+        (result, frame)
+    };
+    let mut checked = 0;
+    for name in SCENES {
+        let file = load(name);
+        let camera = CameraParams {
+            size: Size::new(240, 240),
+            ..*file.camera.params()
+        }
+        .build()
+        .unwrap();
+        let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(Method::INTEGER);
+        let (result, frame) = draw(render);
+        if render.arithmetic() == Arithmetic::Integer {
+            let mut expected = common::Frame::new(frame.size);
+            embedded_graphics::Drawable::draw(&render.with_offset(Point::new(17, -9)), &mut expected)
+                .unwrap();
+            assert_eq!(result, Ok(()), "{name}");
+            assert!(
+                frame.buf == expected.buf,
+                "{name}: not the integer method's pixels"
+            );
+            assert!(frame.writes > 0, "{name}");
+            checked += 1;
+        } else {
+            assert_eq!(name, "grazing");
+            assert_eq!(result, Err(IntegerError::Refused), "{name}");
+            assert_eq!(frame.writes, 0, "{name}: a refused frame wrote pixels");
+        }
+    }
+    assert_eq!(checked, SCENES.len() - 1, "every standard scene but grazing");
+    // Non-square pixels: refused, nothing written.
+    let file = load("lab");
+    let wide = CameraParams {
+        fov_x: Some(1.5),
+        ..*file.camera.params()
+    }
+    .build()
+    .unwrap();
+    let (result, frame) = draw(Render::new(&file.scene, &wide));
+    assert_eq!(result, Err(IntegerError::Refused));
+    assert_eq!(frame.writes, 0);
+}

@@ -220,7 +220,8 @@ fn grazing_ring_of_a_coarsely_quantised_sphere() {
 /// `draw_integer` draws exactly what `draw` with `Method::INTEGER` draws wherever the
 /// rule takes the frame (every standard scene at 240×240, drawn at an offset on a
 /// larger target so the clip cuts it too), and where the rule refuses (grazing; lab
-/// with non-square pixels) it returns `Refused` without writing a pixel.
+/// with non-square pixels), for sub-pixel sampling and for scenes with features it
+/// returns `Refused` without writing a pixel.
 #[test]
 fn draw_integer_is_the_integer_method_or_refuses() {
     use embedded_graphics::prelude::Point;
@@ -270,4 +271,19 @@ fn draw_integer_is_the_integer_method_or_refuses() {
     let (result, frame) = draw(Render::new(&file.scene, &wide));
     assert_eq!(result, Err(IntegerError::Refused));
     assert_eq!(frame.writes, 0);
+    // Sub-pixel sampling, which the integer kernel does not trace: refused.
+    let camera = file.camera;
+    let sampling = embedded_raytracer::Sampling::adaptive(4).unwrap();
+    let (result, frame) = draw(Render::new(&file.scene, &camera).with_sampling(sampling));
+    assert_eq!(result, Err(IntegerError::Refused));
+    assert_eq!(frame.writes, 0);
+    // A scene with lights, a floor and mirrors: refused.
+    for name in common::FEATURE_SCENES {
+        let file = common::load_full(name);
+        let camera = file.camera;
+        let mut frame = common::Frame::new(camera.size());
+        let result = Render::<_, Rgb888, _, _, _>::new(&file.scene, &camera).draw_integer(&mut frame);
+        assert_eq!(result, Err(IntegerError::Refused), "{name}");
+        assert_eq!(frame.writes, 0, "{name}");
+    }
 }

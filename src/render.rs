@@ -375,7 +375,7 @@ impl<const N: usize, C: PixelColor + From<Rgb888>, const L: usize, const P: usiz
     where
         Tg: DrawTarget<Color = C>,
     {
-        if Scene::<N, L, P, D>::FEATURES || self.sampling != Sampling::Center {
+        if !self.integer_kind() {
             return Err(IntegerError::Refused);
         }
         let clip = target.bounding_box();
@@ -430,8 +430,7 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
     pub fn arithmetic(&self) -> Arithmetic {
         let full = Rectangle::new(Point::zero(), self.camera.size());
         let integer = self.method.arithmetic == Arithmetic::Integer
-            && self.sampling == Sampling::Center
-            && !Scene::<N, L, P, D>::FEATURES
+            && self.integer_kind()
             && fixed::IntFrame::new(
                 heapless::Vec::<_, N>::new().as_mut_view(),
                 self.scene.spheres(),
@@ -447,6 +446,12 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
         } else {
             Arithmetic::F32
         }
+    }
+
+    /// Whether the integer kernel can draw this kind of render at all: a scene without
+    /// lights, planes or mirrors, one ray a pixel (its rule then decides per frame).
+    fn integer_kind(&self) -> bool {
+        !Scene::<N, L, P, D>::FEATURES && self.sampling == Sampling::Center
     }
 
     /// The frame through the one dispatch: the part of the image at `offset` that

@@ -363,7 +363,8 @@ impl fmt::Display for BandError {
 
 impl core::error::Error for BandError {}
 
-/// Why [`Render::draw_integer`](crate::Render::draw_integer) did not draw the frame.
+/// Why [`Render::draw_integer`](crate::Render::draw_integer) did not draw the frame, or
+/// [`Render::draw_band_integer`](crate::Render::draw_band_integer) the band.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum IntegerError<E> {
     /// The integer kernel does not take this frame: its per-frame rule (see
@@ -371,7 +372,8 @@ pub enum IntegerError<E> {
     /// and camera, the scene has lights, planes or mirrors, or the sampling is not
     /// [`Sampling::Center`](crate::Sampling::Center). Nothing was drawn.
     Refused,
-    /// The draw target's own error.
+    /// The draw target's own error; for a band, why the band cannot be drawn
+    /// ([`BandError`]).
     Target(E),
 }
 

@@ -287,3 +287,89 @@ fn draw_integer_is_the_integer_method_or_refuses() {
         assert_eq!(frame.writes, 0, "{name}");
     }
 }
+
+/// `Render::draw_band_integer` traces, band by band (several heights, the last band
+/// shorter), the pixels of `draw_band` with `Method::INTEGER` wherever the rule takes the
+/// frame (every standard scene but grazing at 240×240); where it refuses (grazing,
+/// sub-pixel sampling, a scene with lights, a floor and mirrors) it returns `Refused` and
+/// leaves the buffer as it was; a bad band is `draw_band`'s error.
+#[test]
+fn draw_band_integer_is_the_integer_methods_band_or_refuses() {
+    use embedded_raytracer::{BandError, IntegerError};
+    const FILL: Rgb888 = Rgb888::new(1, 2, 3);
+    let mut checked = 0;
+    for name in SCENES {
+        let file = load(name);
+        let camera = CameraParams {
+            size: Size::new(240, 240),
+            ..*file.camera.params()
+        }
+        .build()
+        .unwrap();
+        let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(Method::INTEGER);
+        let taken = render.arithmetic() == Arithmetic::Integer;
+        for band_rows in [1, 16, 20, 77, 240] {
+            let mut start = 0;
+            while start < 240 {
+                let rows = start..(start + band_rows).min(240);
+                let len = 240 * rows.len();
+                let (mut band, mut expected) = (vec![FILL; len], vec![FILL; len]);
+                let result = render.draw_band_integer(rows.clone(), &mut band);
+                if taken {
+                    render.draw_band(rows.clone(), &mut expected).unwrap();
+                    assert_eq!(result, Ok(()), "{name} {rows:?}");
+                    assert!(band == expected, "{name} {rows:?}: not the integer method's band");
+                } else {
+                    assert_eq!(name, "grazing");
+                    assert_eq!(result, Err(IntegerError::Refused), "{name} {rows:?}");
+                    assert!(
+                        band.iter().all(|&p| p == FILL),
+                        "{name}: a refused band was written"
+                    );
+                }
+                start = rows.end;
+            }
+        }
+        checked += usize::from(taken);
+        // A band past the image, a buffer of the wrong size: draw_band's errors.
+        assert_eq!(
+            render.draw_band_integer(230..241, &mut vec![FILL; 240 * 11]),
+            Err(IntegerError::Target(BandError::Rows {
+                start: 230,
+                end: 241,
+                height: 240
+            }))
+        );
+        assert_eq!(
+            render.draw_band_integer(0..2, &mut vec![FILL; 240]),
+            Err(IntegerError::Target(BandError::BufferSize {
+                expected: 480,
+                found: 240
+            }))
+        );
+    }
+    assert_eq!(checked, SCENES.len() - 1, "every standard scene but grazing");
+    // Sub-pixel sampling and scenes with features: refused, the buffer untouched.
+    let file = load("lab");
+    let sampling = embedded_raytracer::Sampling::adaptive(4).unwrap();
+    let mut band = vec![FILL; 320 * 10];
+    assert_eq!(
+        Render::new(&file.scene, &file.camera)
+            .with_sampling(sampling)
+            .draw_band_integer(0..10, &mut band),
+        Err(IntegerError::Refused)
+    );
+    assert!(band.iter().all(|&p| p == FILL));
+    for name in common::FEATURE_SCENES {
+        let file = common::load_full(name);
+        let camera = file.camera;
+        let mut band = vec![FILL; camera.size().width as usize * 3];
+        let render = Render::<_, Rgb888, _, _, _>::new(&file.scene, &camera);
+        assert_eq!(
+            render.draw_band_integer(0..3, &mut band),
+            Err(IntegerError::Refused),
+            "{name}"
+        );
+        assert!(band.iter().all(|&p| p == FILL), "{name}");
+    }
+}

@@ -3,16 +3,24 @@
 //! and, traced by `Render::draw_band` and put on the wire in band order, they are the
 //! whole render's pixels bit for bit — at the firmware's 240×240 in its bands, and
 //! at a smaller size with several band heights, on every standard scene with every
-//! method.
+//! method. And the firmware's camera orbit (`boards/rp2040/src/orbit.rs`): the integer
+//! kernel's rule takes every frame of it, so `Render::draw_band_integer`, which the
+//! firmware traces with, refuses none.
 
 mod common;
 
 #[path = "../boards/rp2040/src/split.rs"]
 mod split;
 
+#[path = "../examples/common/scenes.rs"]
+mod scenes;
+
+#[path = "../boards/rp2040/src/orbit.rs"]
+mod orbit;
+
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
-use embedded_raytracer::{Camera, CameraParams, Method, Render, Scene};
+use embedded_raytracer::{Arithmetic, Camera, CameraParams, Method, Render, Scene};
 
 /// The firmware's panel (`examples/common/st7789_band.rs`: `WIDTH`, `HEIGHT`); its band
 /// height is `split::BAND_ROWS`.
@@ -164,5 +172,52 @@ fn every_method_every_scene_every_band_height_equals_the_whole_render() {
                 assert!(got == want, "{name} {method}: two-core bands of {band_rows} rows");
             }
         }
+    }
+}
+
+/// The firmware draws every frame with `draw_band_integer`, which draws nothing where the
+/// integer kernel's rule refuses the frame: on the orbit it must take every frame — the
+/// angles the firmware steps through (from 0 by `orbit::next_angle`; the `f32` steps do
+/// not repeat, so the first 20,000 frames, over an hour at a few frames a second) and
+/// the whole circle every 0.01° — and, traced band by band in the firmware's bands,
+/// some of those frames are the whole integer render's pixels.
+#[test]
+fn the_integer_kernel_takes_every_frame_of_the_firmware_orbit() {
+    let taken = |angle: f32| {
+        let camera = orbit::camera_at(angle, FIRMWARE_SIZE).unwrap_or_else(|| panic!("no camera at {angle}"));
+        let render = Render::<_, Rgb565>::new(&scenes::LAB, &camera);
+        render.with_method(Method::INTEGER).arithmetic() == Arithmetic::Integer
+    };
+    let mut angle = 0.0f32;
+    for frame in 0..20_000 {
+        assert!(taken(angle), "frame {frame} at {angle} rad: refused");
+        angle = orbit::next_angle(angle);
+    }
+    for k in 0..36_000 {
+        let angle = (k as f32 / 100.0).to_radians();
+        assert!(taken(angle), "{} degrees: refused", k as f32 / 100.0);
+    }
+    // Frames 0, 18, 37 and 55 (0°, 90°, 185°, 275°): the firmware's bands, traced with
+    // draw_band_integer, are the whole integer render.
+    let mut angle = 0.0f32;
+    for frame in 0..56 {
+        if [0, 18, 37, 55].contains(&frame) {
+            let camera = orbit::camera_at(angle, FIRMWARE_SIZE).unwrap();
+            let want = whole(&scenes::LAB, &camera, Method::INTEGER);
+            let render = Render::<_, Rgb888>::new(&scenes::LAB, &camera);
+            let bands = split::band_count(FIRMWARE_SIZE.height, split::BAND_ROWS);
+            let mut got = Vec::new();
+            for k in 0..bands {
+                let rows = split::band_rows(k, FIRMWARE_SIZE.height, split::BAND_ROWS);
+                let mut buf = vec![Rgb888::new(1, 2, 3); (FIRMWARE_SIZE.width * rows.len() as u32) as usize];
+                render.draw_band_integer(rows, &mut buf).unwrap();
+                got.extend(buf);
+            }
+            assert!(
+                got == want,
+                "frame {frame}: integer bands differ from the whole render"
+            );
+        }
+        angle = orbit::next_angle(angle);
     }
 }

@@ -46,6 +46,7 @@
 #[path = "../../../examples/common/scenes.rs"]
 mod scenes;
 
+mod orbit;
 mod split;
 
 // `trace_band`, `BANDS` and `BAND_PIXELS` there are the STM32 example's 16-row bands;
@@ -63,7 +64,7 @@ use embedded_graphics::prelude::*;
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::SpiBus;
 use embedded_hal_bus::spi::ExclusiveDevice;
-use embedded_raytracer::{Camera, Render, Vec3};
+use embedded_raytracer::{Camera, Render};
 use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
 use panic_halt as _;
 use rp2040_hal::{
@@ -115,9 +116,6 @@ const _: () = assert!(split::CORES == 2, "two cores, alternate bands");
 // `draw_label` draws into the first `st7789_band::BAND_ROWS` rows of band 0.
 const _: () = assert!(BAND_ROWS >= st7789_band::BAND_ROWS, "the label fits in band 0");
 
-/// The orbit's step per frame (5°).
-const STEP: f32 = 5.0 * (core::f32::consts::PI / 180.0);
-
 /// ST7789 commands (datasheet, "System function command table 1").
 const CASET: u8 = 0x2A;
 const RASET: u8 = 0x2B;
@@ -140,26 +138,22 @@ fn rows(k: u32) -> Range<u32> {
     split::band_rows(k, HEIGHT, BAND_ROWS)
 }
 
-/// The camera of the frame at orbit angle `angle`: the lab camera's eye turned about
-/// +y around the look-at point. `None` if the kernel rejects it (then bands are black).
+/// The camera of the frame at orbit angle `angle` (`orbit.rs`), at the panel's size.
 fn camera_at(angle: f32) -> Option<Camera> {
-    let lab = scenes::LAB_CAMERA;
-    let offset = lab.eye - lab.look_at;
-    let (s, c) = (libm::sinf(angle), libm::cosf(angle));
-    let eye = lab.look_at + Vec3::new(c * offset.x + s * offset.z, offset.y, c * offset.z - s * offset.x);
-    Camera::new(eye, lab.look_at, lab.up, lab.fov_y, Size::new(WIDTH, HEIGHT)).ok()
+    orbit::camera_at(angle, Size::new(WIDTH, HEIGHT))
 }
 
-/// The next frame's orbit angle; both cores step it with this function.
-fn next_angle(angle: f32) -> f32 {
-    (angle + STEP) % (2.0 * core::f32::consts::PI)
-}
-
-/// Traces `rows` of the lab scene seen by `camera` into `buf`. Without a camera or if
-/// the band is refused, the band is black: the frame still goes out whole, so the
-/// display's write pointer stays in step.
+/// Traces `rows` of the lab scene seen by `camera` into `buf` with the integer kernel
+/// alone (`Render::draw_band_integer`: no `f32` render is linked; its rule takes every
+/// frame of the orbit, `tests/rp2040_split.rs`). Without a camera or if the band is
+/// refused, the band is black: the frame still goes out whole, so the display's write
+/// pointer stays in step.
 fn trace(camera: Option<&Camera>, rows: Range<u32>, buf: &mut [WireRgb565]) {
-    let traced = camera.is_some_and(|camera| Render::new(&scenes::LAB, camera).draw_band(rows, buf).is_ok());
+    let traced = camera.is_some_and(|camera| {
+        Render::new(&scenes::LAB, camera)
+            .draw_band_integer(rows, buf)
+            .is_ok()
+    });
     if !traced {
         buf.fill(WireRgb565::BLACK);
     }
@@ -205,7 +199,7 @@ fn core1(mut buf: Band) -> ! {
             expect_word(&mut fifo, k);
             buf = take_mailbox();
         }
-        angle = next_angle(angle);
+        angle = orbit::next_angle(angle);
     }
 }
 
@@ -420,6 +414,6 @@ fn main() -> ! {
                 None => panic!("core 0's buffer is still on the wire"),
             }
         };
-        angle = next_angle(angle);
+        angle = orbit::next_angle(angle);
     }
 }

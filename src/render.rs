@@ -302,7 +302,7 @@ impl<const N: usize, C: PixelColor + From<Rgb888>, const L: usize, const P: usiz
     /// pixels. Nothing is traced then.
     // Inlined, as `draw` is: where the method and sampling are constants (the usual
     // `Render::new`), the one dispatch then links that method's code alone, not every
-    // combination of the axes (the RP2040 example's `.text`: 372,476 B without).
+    // combination of the axes.
     #[inline]
     pub fn draw_band(&self, rows: core::ops::Range<u32>, buf: &mut [C]) -> Result<(), BandError> {
         let (band, mut sink) = self.band(rows, buf)?;

@@ -10,7 +10,9 @@ use common::{load, SCENES};
 use embedded_graphics::geometry::Size;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_raytracer::reference::sweeps::{integer_limit, integer_sweep, IntegerSweep};
-use embedded_raytracer::{reference, Arithmetic, CameraParams, Method, Render, Vec3};
+use embedded_raytracer::{
+    reference, Arithmetic, CameraParams, Method, Render, SphereTest, Sqrt, Stepping, Vec3,
+};
 
 /// Every standard scene at its own size and at 240×240: the rule's choice, and where
 /// it takes the integer kernel, 0 coverage errors and ≤ 1 level against the reference.
@@ -290,9 +292,10 @@ fn draw_integer_is_the_integer_method_or_refuses() {
 
 /// `Render::draw_band_integer` traces, band by band (several heights, the last band
 /// shorter), the pixels of `draw_band` with `Method::INTEGER` wherever the rule takes the
-/// frame (every standard scene but grazing at 240×240); where it refuses (grazing,
-/// sub-pixel sampling, a scene with lights, a floor and mirrors) it returns `Refused` and
-/// leaves the buffer as it was; a bad band is `draw_band`'s error.
+/// frame (every standard scene but grazing at 240×240), whatever the render's own method;
+/// where it refuses (grazing, non-square pixels, sub-pixel sampling, a scene with lights,
+/// a floor and mirrors) it returns `Refused` and leaves the buffer as it was; a bad band
+/// is `draw_band`'s error.
 #[test]
 fn draw_band_integer_is_the_integer_methods_band_or_refuses() {
     use embedded_raytracer::{BandError, IntegerError};
@@ -307,6 +310,7 @@ fn draw_band_integer_is_the_integer_methods_band_or_refuses() {
         .build()
         .unwrap();
         let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(Method::INTEGER);
+        let f32_render = render.with_method(Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact));
         let taken = render.arithmetic() == Arithmetic::Integer;
         for band_rows in [1, 16, 20, 77, 240] {
             let mut start = 0;
@@ -315,6 +319,14 @@ fn draw_band_integer_is_the_integer_methods_band_or_refuses() {
                 let len = 240 * rows.len();
                 let (mut band, mut expected) = (vec![FILL; len], vec![FILL; len]);
                 let result = render.draw_band_integer(rows.clone(), &mut band);
+                // Whatever the render's own method (here the f32 default): the same band.
+                let mut from_f32 = vec![FILL; len];
+                let f32_result = f32_render.draw_band_integer(rows.clone(), &mut from_f32);
+                assert_eq!(f32_result, result, "{name} {rows:?}");
+                assert!(
+                    from_f32 == band,
+                    "{name} {rows:?}: depends on the render's method"
+                );
                 if taken {
                     render.draw_band(rows.clone(), &mut expected).unwrap();
                     assert_eq!(result, Ok(()), "{name} {rows:?}");
@@ -349,8 +361,21 @@ fn draw_band_integer_is_the_integer_methods_band_or_refuses() {
         );
     }
     assert_eq!(checked, SCENES.len() - 1, "every standard scene but grazing");
-    // Sub-pixel sampling and scenes with features: refused, the buffer untouched.
+    // Non-square pixels, sub-pixel sampling and scenes with features: refused, the buffer
+    // untouched.
     let file = load("lab");
+    let wide = CameraParams {
+        fov_x: Some(1.5),
+        ..*file.camera.params()
+    }
+    .build()
+    .unwrap();
+    let mut band = vec![FILL; 320 * 10];
+    assert_eq!(
+        Render::new(&file.scene, &wide).draw_band_integer(0..10, &mut band),
+        Err(IntegerError::Refused)
+    );
+    assert!(band.iter().all(|&p| p == FILL));
     let sampling = embedded_raytracer::Sampling::adaptive(4).unwrap();
     let mut band = vec![FILL; 320 * 10];
     assert_eq!(

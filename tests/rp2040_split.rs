@@ -177,17 +177,13 @@ fn every_method_every_scene_every_band_height_equals_the_whole_render() {
 
 /// The firmware draws every frame with `draw_band_integer`, which draws nothing where the
 /// integer kernel's rule refuses the frame: on the orbit it must take every frame — the
-/// angles the firmware steps through (from 0 by `orbit::next_angle`; the `f32` steps do
-/// not repeat, so the first 20,000 frames, over an hour at a few frames a second) and
-/// the whole circle every 0.01° — and, traced band by band in the firmware's bands,
-/// some of those frames are the whole integer render's pixels.
+/// first 20,000 angles the firmware steps through (from 0 by `orbit::next_angle`; the
+/// whole cycle, until the angle is 0 again, is the `--ignored` test below) and the whole
+/// circle every 0.01° — and, traced band by band in the firmware's bands, some of those
+/// frames are the whole integer render's pixels.
 #[test]
 fn the_integer_kernel_takes_every_frame_of_the_firmware_orbit() {
-    let taken = |angle: f32| {
-        let camera = orbit::camera_at(angle, FIRMWARE_SIZE).unwrap_or_else(|| panic!("no camera at {angle}"));
-        let render = Render::<_, Rgb565>::new(&scenes::LAB, &camera);
-        render.with_method(Method::INTEGER).arithmetic() == Arithmetic::Integer
-    };
+    let taken = integer_takes;
     let mut angle = 0.0f32;
     for frame in 0..20_000 {
         assert!(taken(angle), "frame {frame} at {angle} rad: refused");
@@ -220,4 +216,31 @@ fn the_integer_kernel_takes_every_frame_of_the_firmware_orbit() {
         }
         angle = orbit::next_angle(angle);
     }
+}
+
+/// Whether the integer kernel takes the firmware's frame at `angle`.
+fn integer_takes(angle: f32) -> bool {
+    let camera = orbit::camera_at(angle, FIRMWARE_SIZE).unwrap_or_else(|| panic!("no camera at {angle}"));
+    let render = Render::<_, Rgb565>::new(&scenes::LAB, &camera).with_method(Method::INTEGER);
+    render.arithmetic() == Arithmetic::Integer
+}
+
+/// Every frame the firmware can draw: stepped by `orbit::next_angle` from 0, the `f32`
+/// angle comes back to exactly 0 (after some 13 million frames) and the orbit repeats;
+/// the rule takes every frame of that cycle. Slow in debug: run in release by `.ci/run`
+/// (`cargo test --release --test rp2040_split -- --ignored`).
+#[test]
+#[ignore = "13 million per-frame rules: release only"]
+fn the_integer_kernel_takes_the_whole_orbit_cycle() {
+    let (mut angle, mut frames) = (0.0f32, 0u64);
+    loop {
+        assert!(integer_takes(angle), "frame {frames} at {angle} rad: refused");
+        angle = orbit::next_angle(angle);
+        frames += 1;
+        if angle == 0.0 {
+            break;
+        }
+        assert!(frames < 100_000_000, "the orbit did not come back to 0");
+    }
+    println!("the orbit repeats after {frames} frames, every one taken by the integer kernel");
 }

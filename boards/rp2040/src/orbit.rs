@@ -4,7 +4,8 @@
 //!
 //! Shared with `#[path]` by the firmware (`boards/rp2040/src/main.rs`) and the host test
 //! `tests/rp2040_split.rs`, which checks that the kernel's per-frame rule takes every
-//! frame of the orbit (so no band of it is refused and left black).
+//! frame of the orbit, the whole cycle of `f32` angles from 0 back to 0 (so no band of
+//! it is refused and left black).
 
 use embedded_graphics::geometry::Size;
 use embedded_raytracer::{Camera, Vec3};

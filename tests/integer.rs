@@ -21,12 +21,7 @@ fn standard_scenes_against_reference() {
     for name in SCENES {
         let file = load(name);
         for size in [file.camera.size(), Size::new(240, 240)] {
-            let camera = CameraParams {
-                size,
-                ..*file.camera.params()
-            }
-            .build()
-            .unwrap();
+            let camera = common::at_size(file.camera.params(), size);
             let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(Method::INTEGER);
             let chosen = render.arithmetic();
             let reference = reference::render(&file.scene, &camera);
@@ -236,12 +231,7 @@ fn draw_integer_is_the_integer_method_or_refuses() {
     let mut checked = 0;
     for name in SCENES {
         let file = load(name);
-        let camera = CameraParams {
-            size: Size::new(240, 240),
-            ..*file.camera.params()
-        }
-        .build()
-        .unwrap();
+        let camera = common::at_size(file.camera.params(), Size::new(240, 240));
         let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(Method::INTEGER);
         let (result, frame) = draw(render);
         if render.arithmetic() == Arithmetic::Integer {
@@ -303,12 +293,7 @@ fn draw_band_integer_is_the_integer_methods_band_or_refuses() {
     let mut checked = 0;
     for name in SCENES {
         let file = load(name);
-        let camera = CameraParams {
-            size: Size::new(240, 240),
-            ..*file.camera.params()
-        }
-        .build()
-        .unwrap();
+        let camera = common::at_size(file.camera.params(), Size::new(240, 240));
         let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(Method::INTEGER);
         let f32_render = render.with_method(Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact));
         let taken = render.arithmetic() == Arithmetic::Integer;

@@ -20,7 +20,7 @@ mod orbit;
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
-use embedded_raytracer::{Arithmetic, Camera, CameraParams, Method, Render, Scene};
+use embedded_raytracer::{Arithmetic, Camera, Method, Render, Scene};
 
 /// The firmware's panel (`examples/common/st7789_band.rs`: `WIDTH`, `HEIGHT`); its band
 /// height is `split::BAND_ROWS`.
@@ -62,12 +62,6 @@ fn whole<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method) -> V
         .into_iter()
         .map(|p| p.expect("every pixel drawn"))
         .collect()
-}
-
-/// `params` at `size`: the scene's own camera, size replaced (as the firmware
-/// measurements do).
-fn at_size(params: &CameraParams, size: Size) -> Camera {
-    CameraParams { size, ..*params }.build().unwrap()
 }
 
 #[test]
@@ -133,7 +127,7 @@ fn the_cores_take_alternate_bands_that_cover_every_row_once() {
 fn firmware_bands_equal_the_whole_render_on_every_standard_scene_and_method() {
     for name in common::SCENES {
         let file = common::load(name);
-        let camera = at_size(file.camera.params(), FIRMWARE_SIZE);
+        let camera = common::at_size(file.camera.params(), FIRMWARE_SIZE);
         for method in Method::ALL.into_iter().chain([Method::INTEGER]) {
             let want = whole(&file.scene, &camera, method);
             let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(method);
@@ -161,7 +155,7 @@ fn every_method_every_scene_every_band_height_equals_the_whole_render() {
     let size = Size::new(40, 30);
     for name in common::SCENES {
         let file = common::load(name);
-        let camera = at_size(file.camera.params(), size);
+        let camera = common::at_size(file.camera.params(), size);
         for method in Method::ALL.into_iter().chain([Method::INTEGER]) {
             let want = whole(&file.scene, &camera, method);
             let render = Render::<_, Rgb888>::new(&file.scene, &camera).with_method(method);

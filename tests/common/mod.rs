@@ -11,7 +11,7 @@ use std::convert::Infallible;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use embedded_raytracer::{Camera, Render, Scene, Sphere, Vec3};
+use embedded_raytracer::{Camera, CameraParams, Render, Scene, Sphere, Vec3};
 #[allow(unused_imports)]
 pub use standard::{load, load_full, path, FEATURE_SCENES, MAX_SPHERES, SCENES};
 
@@ -196,4 +196,10 @@ pub fn huge_row() -> (Scene<1>, Camera) {
     )
     .unwrap();
     (scene, camera)
+}
+
+/// `params` at `size`: a scene's own camera, size replaced (as the firmware
+/// measurements do).
+pub fn at_size(params: &CameraParams, size: Size) -> Camera {
+    CameraParams { size, ..*params }.build().unwrap()
 }

@@ -443,7 +443,7 @@ fn plan(
             // it covers the integer picture's 1/16.
             Silhouette::new(lv, s.radius, camera, Margin::Linear, pw / 16.0)
         } else {
-            Silhouette::All
+            Silhouette::ALL
         };
         let rows = silhouette.rows(camera.size().height);
         let _ = spheres.push(IntSphere {

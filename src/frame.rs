@@ -199,7 +199,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
             let silhouette = if options.span_culling {
                 Silhouette::new(geom.l, radius, camera, T::MARGIN, step_err)
             } else {
-                Silhouette::All
+                Silhouette::ALL
             };
             // The silhouette's size on the image, for a test whose choices depend on it
             // (Auto), computed only by such a test: the culling ellipse's (an upper

@@ -436,7 +436,7 @@ fn render_with<
     // Shadow spans: per light and sphere, the image region where the sphere's shadow on
     // the first plane can fall — outside it a floor pixel does not test that sphere.
     let step_err = S::error_bound(camera);
-    let mut shadow = [[Silhouette::All; N]; L];
+    let mut shadow = [[Silhouette::ALL; N]; L];
     if let (true, Some(floor)) = (options.span_culling, planes.first()) {
         for (row, light) in shadow.iter_mut().zip(&lights) {
             for (sil, fs) in row.iter_mut().zip(frame.spheres) {
@@ -1167,13 +1167,13 @@ fn shadow_silhouette(
             let to_c = along(c, p, -1.0);
             let dist = libm::sqrt(dot(to_c, to_c));
             if !(dist > r && h_p > 0.0) {
-                return Silhouette::All;
+                return Silhouette::ALL;
             }
             let axis = [to_c[0] / dist, to_c[1] / dist, to_c[2] / dist];
             let alpha = libm::asin(r / dist);
             let gamma = libm::acos((-dot(axis, n)).clamp(-1.0, 1.0));
             if !(gamma + alpha < core::f64::consts::FRAC_PI_2 - 1e-6) {
-                return Silhouette::All;
+                return Silhouette::ALL;
             }
             // Along the tilt, a cut point lies h_P·tan θ from the light's foot with θ
             // within α of γ; across it, at most |p − P|·sin α ≤ h_P·sin α/cos(γ + α).
@@ -1187,7 +1187,7 @@ fn shadow_silhouette(
     let size = libm::sqrt(dot(centre, centre)) + libm::sqrt(dot(c, c)) + r;
     let radius = radius + (radius + size) * (1.0 / 256.0);
     if !(radius.is_finite() && size.is_finite()) {
-        return Silhouette::All;
+        return Silhouette::ALL;
     }
     let centre = Vec3::new(centre[0] as f32, centre[1] as f32, centre[2] as f32);
     Silhouette::new(centre, radius as f32, camera, Margin::Quadratic, step_err)

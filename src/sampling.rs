@@ -796,12 +796,12 @@ fn span_bands<const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
             });
         // The culling ellipse where it was built for the same error (the direct
         // stepping), saving its f64 work.
-        let outer = if fs.silhouette != Silhouette::All && step_err >= err {
+        let outer = if !fs.silhouette.is_all() && step_err >= err {
             fs.silhouette
         } else {
             Silhouette::new(g.l, r, camera, T::MARGIN, err)
         };
-        if touching || outer == Silhouette::All {
+        if touching || outer.is_all() {
             return None;
         }
         // Never fails: one per sphere.

@@ -29,7 +29,7 @@
 //!
 //! When the enlarged sphere contains the eye or crosses the plane through the eye
 //! parallel to the image, its silhouette is not a bounded ellipse (a parabola, a
-//! hyperbola, or the whole image): that sphere is not culled ([`Silhouette::All`]).
+//! hyperbola, or the whole image): that sphere is not culled ([`Silhouette::ALL`]).
 //! The same fallback catches any non-finite coefficient.
 
 use crate::camera::Camera;
@@ -45,22 +45,26 @@ pub(crate) enum Margin {
     Quadratic,
 }
 
-/// A sphere's silhouette for one frame.
+/// A sphere's silhouette for one frame: an [`Ellipse`], or every column of every row
+/// (not culled, [`Silhouette::ALL`]).
+///
+/// Six floats and no tag: an ellipse always has `q > 0` (see `ellipse`), and anything
+/// else (`ALL` has `q = 0`) culls nothing, so a frame keeps no tag word per sphere of
+/// its capacity.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum Silhouette {
-    /// Not culled: every column of every row.
-    All,
-    /// The (enlarged) silhouette: for row `y`, columns
-    /// `xc0 + kx·(y − y0) ± √(h0 − q·(y − y0)²)`, with the centre row split as
-    /// `y0 = y0i + y0f` (`y0i` an integer, `|y0f| ≤ ½`) so that `j − y0` has one rounding.
-    Ellipse {
-        y0i: f32,
-        y0f: f32,
-        q: f32,
-        h0: f32,
-        xc0: f32,
-        kx: f32,
-    },
+pub(crate) struct Silhouette(Ellipse);
+
+/// The (enlarged) silhouette: for row `y`, columns
+/// `xc0 + kx·(y − y0) ± √(h0 − q·(y − y0)²)`, with the centre row split as
+/// `y0 = y0i + y0f` (`y0i` an integer, `|y0f| ≤ ½`) so that `j − y0` has one rounding.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Ellipse {
+    pub y0i: f32,
+    pub y0f: f32,
+    pub q: f32,
+    pub h0: f32,
+    pub xc0: f32,
+    pub kx: f32,
 }
 
 /// A silhouette's size on the image, in pixels: the largest half-width along a row
@@ -73,15 +77,34 @@ pub(crate) struct Extent {
 }
 
 impl Silhouette {
+    /// Not culled: every column of every row.
+    pub(crate) const ALL: Self = Self(Ellipse {
+        y0i: 0.0,
+        y0f: 0.0,
+        q: 0.0,
+        h0: 0.0,
+        xc0: 0.0,
+        kx: 0.0,
+    });
+
+    /// The ellipse; `None` for [`Self::ALL`] (and any `q` that is not positive).
+    #[inline(always)]
+    pub(crate) fn get(&self) -> Option<Ellipse> {
+        (self.0.q > 0.0).then_some(self.0)
+    }
+
+    /// Whether this silhouette culls nothing.
+    #[inline(always)]
+    pub(crate) fn is_all(&self) -> bool {
+        self.get().is_none()
+    }
+
     /// The ellipse's extent; `None` when the silhouette is not a bounded ellipse.
     pub(crate) fn extent(&self) -> Option<Extent> {
-        match *self {
-            Silhouette::All => None,
-            Silhouette::Ellipse { q, h0, .. } => Some(Extent {
-                half_width: crate::math::sqrt_exact(h0),
-                half_height: crate::math::sqrt_exact(h0 / q),
-            }),
-        }
+        self.get().map(|Ellipse { q, h0, .. }| Extent {
+            half_width: crate::math::sqrt_exact(h0),
+            half_height: crate::math::sqrt_exact(h0 / q),
+        })
     }
 
     /// The ellipse's bounding box `[x0, x1] × [y0, y1]` (image coordinates, pixel
@@ -89,16 +112,16 @@ impl Silhouette {
     /// `π·h0/√q` over `π` times an upper bound of its semi-major axis, the box's
     /// half-diagonal); `None` when the silhouette is not a bounded ellipse.
     pub(crate) fn bounds(&self) -> Option<([f32; 4], f32)> {
-        match *self {
-            Silhouette::All => None,
-            Silhouette::Ellipse {
+        match self.get() {
+            None => None,
+            Some(Ellipse {
                 y0i,
                 y0f,
                 q,
                 h0,
                 xc0,
                 kx,
-            } => {
+            }) => {
                 let half_height = crate::math::sqrt_exact(h0 / q);
                 // Along a row the centre moves by kx per row: over ±half_height.
                 let half_width = kx.abs() * half_height + crate::math::sqrt_exact(h0);
@@ -123,7 +146,7 @@ impl Silhouette {
     /// bound `step_err`. `All` whenever culling cannot be proven safe.
     pub(crate) fn new(l: Vec3, radius: f32, camera: &Camera, margin: Margin, step_err: f32) -> Self {
         let Some(ellipse) = ellipse::<false>(l, radius, camera, margin, step_err) else {
-            return Silhouette::All;
+            return Silhouette::ALL;
         };
         ellipse
     }
@@ -155,16 +178,16 @@ impl Silhouette {
     #[inline]
     pub(crate) fn band_reach(&self, j: u32, h: f32, reach: (f32, f32)) -> Option<(f32, f32)> {
         let (half_height, m) = reach;
-        match *self {
-            Silhouette::All => Some((f32::NEG_INFINITY, f32::INFINITY)),
-            Silhouette::Ellipse {
+        match self.get() {
+            None => Some((f32::NEG_INFINITY, f32::INFINITY)),
+            Some(Ellipse {
                 y0i,
                 y0f,
                 q,
                 h0,
                 xc0,
                 kx,
-            } => {
+            }) => {
                 let dy = (j as f32 - y0i) - y0f;
                 // The band in rows from the centre row, widened for the roundings of
                 // dy ± h, and cut to the ellipse's own rows (half-height widened by a
@@ -197,9 +220,9 @@ impl Silhouette {
     /// [`Self::band_reach`]'s per-frame constants: the half-height (widened by a
     /// relative 2⁻¹⁶ for its rounding) and `√(h0 / (q·(q + kx²)))`.
     pub(crate) fn reach_consts(&self) -> (f32, f32) {
-        match *self {
-            Silhouette::All => (f32::INFINITY, 0.0),
-            Silhouette::Ellipse { q, h0, kx, .. } => (
+        match self.get() {
+            None => (f32::INFINITY, 0.0),
+            Some(Ellipse { q, h0, kx, .. }) => (
                 crate::math::sqrt_exact(h0 / q) * (1.0 + 1.0 / 65536.0),
                 crate::math::sqrt_exact(h0 / (q * (q + kx * kx))),
             ),
@@ -212,16 +235,16 @@ impl Silhouette {
     /// `All` is never inside (it is not a proven region).
     #[inline]
     pub(crate) fn band_inside(&self, j: u32, h: f32) -> Option<(f32, f32)> {
-        match *self {
-            Silhouette::All => None,
-            Silhouette::Ellipse {
+        match self.get() {
+            None => None,
+            Some(Ellipse {
                 y0i,
                 y0f,
                 q,
                 h0,
                 xc0,
                 kx,
-            } => {
+            }) => {
                 let dy = (j as f32 - y0i) - y0f;
                 let slack = (dy.abs() + h) * (1.0 / 1_048_576.0);
                 let (mut lo, mut hi) = (f32::NEG_INFINITY, f32::INFINITY);
@@ -268,7 +291,7 @@ impl Silhouette {
     /// peaks at the last row with `dy < 0` or the first with `dy ≥ 0`, and falls off
     /// on both sides. Test: `rows_hold_every_row_span`.
     pub(crate) fn rows(&self, height: u32) -> (u32, u32) {
-        let Silhouette::Ellipse { y0i, y0f, q, h0, .. } = *self else {
+        let Some(Ellipse { y0i, y0f, q, h0, .. }) = self.get() else {
             return (0, height);
         };
         if !(q > 0.0 && q.is_finite() && h0.is_finite() && y0i.is_finite() && y0f.is_finite()) {
@@ -303,16 +326,16 @@ impl Silhouette {
     /// rays can hit the sphere; `None` if none can.
     #[inline]
     pub(crate) fn row_span(&self, j: u32, i0: u32, i1: u32) -> Option<(u32, u32)> {
-        match *self {
-            Silhouette::All => Some((i0, i1)),
-            Silhouette::Ellipse {
+        match self.get() {
+            None => Some((i0, i1)),
+            Some(Ellipse {
                 y0i,
                 y0f,
                 q,
                 h0,
                 xc0,
                 kx,
-            } => {
+            }) => {
                 let (dy, hw2) = Self::row_cut(j, y0i, y0f, q, h0);
                 if hw2 < 0.0 {
                     return None;
@@ -392,14 +415,14 @@ pub(crate) enum IntCut {
 impl Silhouette {
     /// The integer cut of this silhouette for the rows `[j0, j1)` ([`Self::rows`]).
     pub(crate) fn int_cut(&self, (j0, j1): (u32, u32)) -> IntCut {
-        let Silhouette::Ellipse {
+        let Some(Ellipse {
             y0i,
             y0f,
             q,
             h0,
             xc0,
             kx,
-        } = *self
+        }) = self.get()
         else {
             return IntCut::All;
         };
@@ -584,14 +607,14 @@ fn ellipse<const INNER: bool>(
     }
     let y0i = libm::round(y0);
     let (q, h0, kx) = (q as f32, h0 as f32, kx as f32);
-    (q > 0.0 && q.is_finite() && h0.is_finite() && kx.is_finite()).then_some(Silhouette::Ellipse {
+    (q > 0.0 && q.is_finite() && h0.is_finite() && kx.is_finite()).then_some(Silhouette(Ellipse {
         y0i: y0i as f32,
         y0f: (y0 - y0i) as f32,
         q,
         h0,
         xc0: xc0 as f32,
         kx,
-    })
+    }))
 }
 
 #[cfg(test)]
@@ -640,14 +663,14 @@ mod tests {
         let mut check = |sil: Silhouette, (w, h): (u32, u32)| {
             let rows = sil.rows(h);
             let cut = sil.int_cut(rows);
-            let Silhouette::Ellipse {
+            let Some(Ellipse {
                 y0i,
                 y0f,
                 q,
                 h0,
                 xc0,
                 kx,
-            } = sil
+            }) = sil.get()
             else {
                 assert_eq!(cut, IntCut::All);
                 return;
@@ -692,25 +715,27 @@ mod tests {
         }
         for _ in 0..3_000 {
             let y0 = next(-500.0, 3_000.0);
-            let sil = Silhouette::Ellipse {
+            let sil = Silhouette(Ellipse {
                 y0i: y0.floor(),
                 y0f: y0 - y0.floor(),
                 q: next(0.0, 1.0).powi(4) * 300.0 + f32::MIN_POSITIVE,
                 h0: next(0.0, 1.0).powi(3) * 4.0e6,
                 xc0: next(-500.0, 3_000.0),
                 kx: next(-3.0, 3.0),
-            };
+            });
             check(sil, (2_500, 2_500));
         }
         assert!(rows_checked > 100_000, "too few rows checked: {rows_checked}");
         // Out of the fixed-point ranges: every column.
-        let ellipse = |y0i: f32, q: f32, h0: f32, kx: f32| Silhouette::Ellipse {
-            y0i,
-            y0f: 0.25,
-            q,
-            h0,
-            xc0: 5.0,
-            kx,
+        let ellipse = |y0i: f32, q: f32, h0: f32, kx: f32| {
+            Silhouette(Ellipse {
+                y0i,
+                y0f: 0.25,
+                q,
+                h0,
+                xc0: 5.0,
+                kx,
+            })
         };
         assert_ne!(ellipse(10.0, 1.0, 100.0, 0.5).int_cut((0, 48)), IntCut::All);
         for sil in [
@@ -719,7 +744,7 @@ mod tests {
             ellipse(10.0, 1.0, 100.0, 4.0e4),
             ellipse(10.0, f32::NAN, 100.0, 0.5),
             ellipse(3.0e5, 1.0, 100.0, 0.5),
-            Silhouette::All,
+            Silhouette::ALL,
         ] {
             assert_eq!(sil.int_cut((0, 48)), IntCut::All, "{sil:?}");
         }
@@ -736,7 +761,7 @@ mod tests {
         let check = |sil: Silhouette, (w, h): (u32, u32)| {
             let (j0, j1) = sil.rows(h);
             assert!(j0 <= j1 && j1 <= h, "{sil:?}: rows {j0}..{j1} of {h}");
-            let Silhouette::Ellipse { y0i, y0f, q, h0, .. } = sil else {
+            let Some(Ellipse { y0i, y0f, q, h0, .. }) = sil.get() else {
                 return 0;
             };
             let mut spans = 0;
@@ -770,14 +795,14 @@ mod tests {
         // Random coefficients: centres near and past the image's ends, thin and tall.
         for _ in 0..2_000 {
             let y0 = next(-50.0, 350.0);
-            let sil = Silhouette::Ellipse {
+            let sil = Silhouette(Ellipse {
                 y0i: y0.floor(),
                 y0f: y0 - y0.floor(),
                 q: next(0.0, 1.0).powi(4) * 50.0 + f32::MIN_POSITIVE,
                 h0: next(-10.0, 1.0e4),
                 xc0: next(-10.0, 300.0),
                 kx: next(-2.0, 2.0),
-            };
+            });
             spans += check(sil, (300, 300));
         }
         assert!(spans > 10_000, "too few rows with spans: {spans}");
@@ -788,18 +813,18 @@ mod tests {
             (f32::INFINITY, 1.0),
             (1.0, f32::NAN),
         ] {
-            let sil = Silhouette::Ellipse {
+            let sil = Silhouette(Ellipse {
                 y0i: 10.0,
                 y0f: 0.5,
                 q,
                 h0,
                 xc0: 5.0,
                 kx: 0.0,
-            };
+            });
             assert_eq!(sil.rows(48), (0, 48));
         }
-        assert_eq!(Silhouette::All.rows(48), (0, 48));
-        assert_eq!(Silhouette::All.rows(0), (0, 0));
+        assert_eq!(Silhouette::ALL.rows(48), (0, 48));
+        assert_eq!(Silhouette::ALL.rows(0), (0, 0));
     }
 
     /// `band_reach` contains every point of the ellipse in the band, and `band_inside`
@@ -824,14 +849,14 @@ mod tests {
             let centre = Vec3::new(next(-3.0, 3.0), next(-3.0, 3.0), next(-3.0, 2.0));
             let radius = next(0.05, 1.5);
             let l = centre - eye;
-            let Silhouette::Ellipse {
+            let Some(Ellipse {
                 y0i,
                 y0f,
                 q,
                 h0,
                 xc0,
                 kx,
-            } = Silhouette::new(l, radius, &camera, Margin::Linear, 0.0)
+            }) = Silhouette::new(l, radius, &camera, Margin::Linear, 0.0).get()
             else {
                 continue;
             };
@@ -920,9 +945,9 @@ mod tests {
         let outer = Silhouette::new(l, 1.0, &camera, Margin::Quadratic, 1e-6);
         let exact = Silhouette::new(l, 1.0, &camera, Margin::Linear, 0.0);
         let inner = Silhouette::inner(l, 1.0, &camera, Margin::Quadratic, 1e-6).unwrap();
-        let width = |s: &Silhouette| match *s {
-            Silhouette::Ellipse { h0, .. } => h0,
-            Silhouette::All => f32::INFINITY,
+        let width = |s: &Silhouette| match s.get() {
+            Some(Ellipse { h0, .. }) => h0,
+            None => f32::INFINITY,
         };
         assert!(width(&inner) < width(&exact) && width(&exact) < width(&outer));
         // Quadratic margin 2⁻¹⁷·|L|² ≈ 7.6e-4 against r² = 1e-4: nothing is proven.

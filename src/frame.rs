@@ -62,8 +62,8 @@ pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
 /// square root `Q`.
 ///
 /// Out of line: the per-sphere constants live in this function's own stack frame, so
-/// a render pays for its own method's (a `Scene<64>` with the robust test keeps 72 B a
-/// sphere, with forward differences 120 B), not for the largest of all the methods
+/// a render pays for its own method's (a `Scene<64>` with the robust test keeps 68 B a
+/// sphere, with forward differences 116 B), not for the largest of all the methods
 /// the one dispatch could have chosen.
 #[inline(never)]
 pub(crate) fn render<

@@ -1200,7 +1200,7 @@ fn small_silhouettes<const N: usize, T: TestStrategy, Sh: Shader>(
         // stepping error: the culling margins of the quadratic tests or of a far eye's
         // stepping could make a sub-pixel sphere look large); the box from the culling
         // ellipse, which contains every pixel a centre ray can hit it in (without
-        // culling, `All`, the tight one stands in).
+        // culling, `Silhouette::ALL`, the tight one stands in).
         let tight = crate::span::Silhouette::new(
             fs.geom.l,
             crate::math::sqrt_exact(fs.geom.r2),

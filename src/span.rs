@@ -143,7 +143,7 @@ impl Silhouette {
 
     /// The silhouette of the sphere (`l = centre − eye`, radius `radius`) for the
     /// camera, enlarged for the test's `margin` and the stepping's direction error
-    /// bound `step_err`. `All` whenever culling cannot be proven safe.
+    /// bound `step_err`. [`Self::ALL`] whenever culling cannot be proven safe.
     pub(crate) fn new(l: Vec3, radius: f32, camera: &Camera, margin: Margin, step_err: f32) -> Self {
         let Some(ellipse) = ellipse::<false>(l, radius, camera, margin, step_err) else {
             return Silhouette::ALL;
@@ -167,7 +167,7 @@ impl Silhouette {
 
     /// The columns `x` (image coordinates, real) the silhouette reaches between rows
     /// `j − h` and `j + h`: an interval containing the ellipse's cut with that band,
-    /// `None` if it misses the band. `All` reaches every column.
+    /// `None` if it misses the band. [`Self::ALL`] reaches every column.
     ///
     /// The left edge `xc(y) − hw(y)` is convex in `y` and the right edge `xc(y) + hw(y)`
     /// concave, so each extreme over the band is at the band's end nearest the edge's
@@ -232,7 +232,7 @@ impl Silhouette {
     /// The columns `x` whose vertical segment from row `j − h` to `j + h` lies inside
     /// the ellipse: the cuts with the band's two ends intersected (the ellipse is
     /// convex), padded inward for the f32 rounding and `2⁻⁸` pixel. `None` if empty;
-    /// `All` is never inside (it is not a proven region).
+    /// [`Self::ALL`] is never inside (it is not a proven region).
     #[inline]
     pub(crate) fn band_inside(&self, j: u32, h: f32) -> Option<(f32, f32)> {
         match self.get() {
@@ -279,7 +279,7 @@ impl Silhouette {
     }
 
     /// The rows `[j0, j1)` of `0..height` outside which [`Self::row_span`] is `None`
-    /// (every row for `All` and for coefficients that are not finite with `q > 0`),
+    /// (every row for [`Self::ALL`] and for coefficients that are not finite),
     /// found once per frame by binary search, so that a row pays no floating-point
     /// operation for a sphere it cannot meet.
     ///
@@ -743,6 +743,11 @@ mod tests {
             ellipse(10.0, 1.0, 3.0e7, 0.5),
             ellipse(10.0, 1.0, 100.0, 4.0e4),
             ellipse(10.0, f32::NAN, 100.0, 0.5),
+            // An ellipse (q > 0) whose other coefficients are not finite: int_cut's
+            // own rejection, not `ALL`'s.
+            ellipse(10.0, 1.0, f32::NAN, 0.5),
+            ellipse(f32::NAN, 1.0, 100.0, 0.5),
+            ellipse(10.0, 1.0, 100.0, f32::INFINITY),
             ellipse(3.0e5, 1.0, 100.0, 0.5),
             Silhouette::ALL,
         ] {
@@ -806,6 +811,7 @@ mod tests {
             spans += check(sil, (300, 300));
         }
         assert!(spans > 10_000, "too few rows with spans: {spans}");
+        // `ALL` (q ≤ 0 or NaN) and ellipses whose coefficients are not finite.
         for (q, h0) in [
             (f32::NAN, 1.0),
             (0.0, 1.0),

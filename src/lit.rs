@@ -1115,8 +1115,8 @@ fn plane_span<T: TestStrategy, const N: usize, const L: usize>(
 
 /// Where on the image the shadow that sphere `g` casts on `floor` under `light` can be
 /// seen: the silhouette of a ball that contains the shadow, so a primary ray that hits
-/// the floor outside it cannot be in that sphere's shadow. `Silhouette::ALL` (no culling) where the
-/// shadow is not bounded.
+/// the floor outside it cannot be in that sphere's shadow. `Silhouette::ALL` (no
+/// culling) where the shadow is not bounded.
 ///
 /// - Directional light (unit `l` toward it): the shadow is the cut of the cylinder of
 ///   radius `r` along `l` through the centre `C` with the plane — an ellipse centred

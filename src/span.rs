@@ -54,6 +54,9 @@ pub(crate) enum Margin {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Silhouette(Ellipse);
 
+// Six floats, no tag: what every sphere of a frame's capacity keeps for its culling.
+const _: () = assert!(size_of::<Silhouette>() == 24);
+
 /// The (enlarged) silhouette: for row `y`, columns
 /// `xc0 + kx·(y − y0) ± √(h0 − q·(y − y0)²)`, with the centre row split as
 /// `y0 = y0i + y0f` (`y0i` an integer, `|y0f| ≤ ½`) so that `j − y0` has one rounding.

@@ -149,15 +149,21 @@ fn resolution_never_limits() {
     }
 }
 
+/// The camera with a horizontal field of view of its own: pixels that are not square,
+/// which the integer rule refuses.
+fn non_square_pixels(params: &CameraParams) -> CameraParams {
+    CameraParams {
+        fov_x: Some(1.5),
+        ..*params
+    }
+}
+
 /// Non-square pixels and an eye inside a sphere are drawn in
 /// `f32` (the rule refuses them), and the picture is then exactly the `f32` method's.
 #[test]
 fn refused_frames_are_the_f32_methods() {
     let file = load("lab");
-    let wide = CameraParams {
-        fov_x: Some(1.5),
-        ..*file.camera.params()
-    };
+    let wide = non_square_pixels(file.camera.params());
     let inside = CameraParams {
         eye: Vec3::new(0.0, 0.0, 0.5),
         ..*file.camera.params()
@@ -254,12 +260,7 @@ fn draw_integer_is_the_integer_method_or_refuses() {
     assert_eq!(checked, SCENES.len() - 1, "every standard scene but grazing");
     // Non-square pixels: refused, nothing written.
     let file = load("lab");
-    let wide = CameraParams {
-        fov_x: Some(1.5),
-        ..*file.camera.params()
-    }
-    .build()
-    .unwrap();
+    let wide = non_square_pixels(file.camera.params()).build().unwrap();
     let (result, frame) = draw(Render::new(&file.scene, &wide));
     assert_eq!(result, Err(IntegerError::Refused));
     assert_eq!(frame.writes, 0);
@@ -349,12 +350,7 @@ fn draw_band_integer_is_the_integer_methods_band_or_refuses() {
     // Non-square pixels, sub-pixel sampling and scenes with features: refused, the buffer
     // untouched.
     let file = load("lab");
-    let wide = CameraParams {
-        fov_x: Some(1.5),
-        ..*file.camera.params()
-    }
-    .build()
-    .unwrap();
+    let wide = non_square_pixels(file.camera.params()).build().unwrap();
     let mut band = vec![FILL; 320 * 10];
     assert_eq!(
         Render::new(&file.scene, &wide).draw_band_integer(0..10, &mut band),

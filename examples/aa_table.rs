@@ -17,7 +17,7 @@
 
 use std::fmt::Write as _;
 
-use embedded_graphics::pixelcolor::RgbColor;
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_raytracer::{Camera, Sampling, Scene};
 
 #[path = "common/aa.rs"]
@@ -64,22 +64,30 @@ fn table<const N: usize, const L: usize, const P: usize, const D: usize>(
     }
     let grid4 = quality.colors(Sampling::grid(4).unwrap());
     let adaptive4 = quality.colors(Sampling::adaptive(4).unwrap());
+    let center = quality.colors(Sampling::Center);
+    // The largest channel difference of each pixel between two renders.
+    let apart = |x: &[Rgb888], y: &[Rgb888]| -> Vec<u8> {
+        x.iter()
+            .zip(y)
+            .map(|(g, a)| {
+                [
+                    g.r().abs_diff(a.r()),
+                    g.g().abs_diff(a.g()),
+                    g.b().abs_diff(a.b()),
+                ]
+                .into_iter()
+                .max()
+                .unwrap_or(0)
+            })
+            .collect()
+    };
+    // Center against Grid(4): where the centre ray alone is more than 2 levels off the
+    // grid, an adaptive render within 2 levels of Grid(4) must trace the grid's rays
+    // (all but 0.1 % of the pixels): the fewest edge pixels any rule can have.
+    let must = apart(center, grid4).iter().filter(|&&d| d > 2).count();
     // Adaptive(4) against Grid(4): pixels more than 2 levels apart, the largest and where.
     let w = size.width as usize;
-    let diffs: Vec<u8> = grid4
-        .iter()
-        .zip(adaptive4)
-        .map(|(g, a)| {
-            [
-                g.r().abs_diff(a.r()),
-                g.g().abs_diff(a.g()),
-                g.b().abs_diff(a.b()),
-            ]
-            .into_iter()
-            .max()
-            .unwrap_or(0)
-        })
-        .collect();
+    let diffs = apart(grid4, adaptive4);
     let over = diffs.iter().filter(|&&d| d > 2).count();
     let (at, worst) = diffs
         .iter()
@@ -88,9 +96,10 @@ fn table<const N: usize, const L: usize, const P: usize, const D: usize>(
         .map_or((0, 0), |(k, d)| (k, *d));
     let _ = writeln!(
         notes,
-        "- {name}: edge pixels {edges} of {} ({:.2} %); Adaptive(4) vs Grid(4): {over} pixels ({:.3} %) more than 2 levels apart, the largest {worst} levels at ({}, {}){}",
+        "- {name}: edge pixels {edges} of {} ({:.2} %; Center is more than 2 levels off Grid(4) in {must}, {:.2} %); Adaptive(4) vs Grid(4): {over} pixels ({:.3} %) more than 2 levels apart, the largest {worst} levels at ({}, {}){}",
         edge.len(),
         100.0 * edges as f64 / edge.len() as f64,
+        100.0 * must as f64 / edge.len() as f64,
         100.0 * over as f64 / edge.len() as f64,
         at % w,
         at / w,

@@ -8,7 +8,9 @@
 //!   against the same scene traced **literally** — the default method with every object
 //!   tested for every ray (no span culling: spheres' and planes' spans) and closest-hit
 //!   shadow rays (`Options::DEFAULT.with_span_culling(false).with_shadow_any_hit(false)`)
-//!   — and against the seed's method traced that way.
+//!   — and against the seed's method traced that way; and the default render of the
+//!   same scene with `shadows = false` (`no-shadow-rays`), whose time the literal
+//!   render's is set against: about the speed-up if shadow rays cost nothing.
 //! - **Feature cost** (group `features`): the `mirrors` scene's camera and spheres, one
 //!   feature added at a time, each through the smallest scene type that holds it —
 //!   (a) spheres only (`Scene<N>`, the Lab #1 loop), (b) + the floor, (c) + the lights
@@ -51,6 +53,11 @@ const DEFAULT: &str = "default";
 const LITERAL: &str = "literal";
 /// The feature scenes traced literally with the seed's method.
 const LITERAL_SEED: &str = "literal-seed";
+/// The feature scenes' default render of the same scene with `shadows = false`: no
+/// shadow ray at all (every light reaches every point, so its shading is if anything
+/// dearer), so the literal render's time over it is about the speed-up the default
+/// would have if its shadow rays cost nothing.
+const NO_SHADOW_RAYS: &str = "no-shadow-rays";
 /// The literal options: every object tested for every ray, closest-hit shadow rays.
 const LITERAL_OPTIONS: Options = Options::DEFAULT
     .with_span_culling(false)
@@ -94,6 +101,18 @@ fn main() {
     }
 
     let files = FEATURE_SCENES.map(|name| (name, standard::load_full(name)));
+    // Each feature scene without its shadows (everything else as loaded).
+    let unshadowed = files.each_ref().map(|(name, file)| {
+        let mut scene = file.scene.clone();
+        let settings = Settings {
+            shadows: false,
+            ..scene.settings()
+        };
+        scene
+            .set_settings(settings)
+            .unwrap_or_else(|e| panic!("{name} without shadows: {e}"));
+        scene
+    });
     let file = standard::load_full(SERIES_SCENE);
     let camera = &file.camera;
     let size = camera.size();
@@ -104,15 +123,16 @@ fn main() {
     let mirrors: Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH> = stage(&file, Stage::Mirrors);
     // Every feature benchmark also goes into the interleaved rounds (see `interleave`).
     let mut frames: Vec<Frame<'_>> = Vec::new();
-    for (name, file) in &files {
+    for ((name, file), unshadowed) in files.iter().zip(&unshadowed) {
         let mut group = c.benchmark_group(*name);
         let cases = [
-            (DEFAULT, Method::DEFAULT, Options::DEFAULT),
-            (LITERAL, Method::DEFAULT, LITERAL_OPTIONS),
-            (LITERAL_SEED, Method::LITERAL, LITERAL_OPTIONS),
+            (DEFAULT, Method::DEFAULT, Options::DEFAULT, &file.scene),
+            (LITERAL, Method::DEFAULT, LITERAL_OPTIONS, &file.scene),
+            (LITERAL_SEED, Method::LITERAL, LITERAL_OPTIONS, &file.scene),
+            (NO_SHADOW_RAYS, Method::DEFAULT, Options::DEFAULT, unshadowed),
         ];
-        for (label, method, options) in cases {
-            let render = Render::new(&file.scene, &file.camera)
+        for (label, method, options, scene) in cases {
+            let render = Render::new(scene, &file.camera)
                 .with_method(method)
                 .with_options(options);
             bench(&mut group, name, label, &render, &file.camera);
@@ -311,6 +331,15 @@ ratio within a round",
                 let method = method.to_string();
                 println!("  {label:14} {method:28} {v:10.2} {r:8.2}x  {lo:.2}–{hi:.2}");
             }
+        }
+        if let (Some(v), Some((r, lo, hi))) = (
+            round_ns(rounds, scene, NO_SHADOW_RAYS),
+            round_ratio(rounds, scene, LITERAL, NO_SHADOW_RAYS),
+        ) {
+            println!(
+                "  the default without any shadow ray (shadows = false) {v:.2} ns/pixel; \
+the literal render's time over it, the speed-up if shadow rays cost nothing: {r:.2}x ({lo:.2}–{hi:.2})"
+            );
         }
     }
     if round_ns(rounds, FEATURES, STEPS[0].0).is_none() {

@@ -434,10 +434,11 @@ fn render_with<
         + f64::from(size.width) * f64::from(camera.pixel_step().length())
         + f64::from(size.height) * f64::from(camera.scanline_step().length());
     // Shadow spans: per light and sphere, the image region where the sphere's shadow on
-    // the first plane can fall — outside it a floor pixel does not test that sphere.
+    // the first plane can fall — outside it a floor pixel does not test that sphere. A
+    // scene without shadows casts no shadow ray, so none is built (they stay `ALL`).
     let step_err = S::error_bound(camera);
     let mut shadow = [[Silhouette::ALL; N]; L];
-    if let (true, Some(floor)) = (options.span_culling, planes.first()) {
+    if let (true, true, Some(floor)) = (scene.settings().shadows, options.span_culling, planes.first()) {
         for (row, light) in shadow.iter_mut().zip(&lights) {
             for (sil, fs) in row.iter_mut().zip(frame.spheres) {
                 *sil = shadow_silhouette(light, &fs.geom, floor, camera, step_err);

@@ -387,7 +387,8 @@ fn scene_errors() {
 /// Culling (sphere spans, plane spans, shadow spans) and the any-hit shortcut change no
 /// pixel on random scenes: spheres above, on, in and under a random floor, point lights
 /// high and low (inside spheres too), directional lights down to grazing, cameras
-/// anywhere. The robust test, bit for bit against the literal loop.
+/// anywhere, every fourth scene with shadows off (its shadow spans are not built). The
+/// robust test, bit for bit against the literal loop.
 #[test]
 fn culling_changes_no_pixel_on_random_lit_scenes() {
     let mut rng = common::Rng(0x5eed_1175);
@@ -440,6 +441,13 @@ fn culling_changes_no_pixel_on_random_lit_scenes() {
                 )
             };
             s.push_light(light).unwrap();
+        }
+        if case % 4 == 3 {
+            let settings = Settings {
+                shadows: false,
+                ..s.settings()
+            };
+            s.set_settings(settings).unwrap();
         }
         let eye = Vec3::new(
             rng.range(-6.0, 6.0),

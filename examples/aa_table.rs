@@ -1,8 +1,10 @@
 //! Prints the README's anti-aliasing table: per standard scene and sampling choice,
 //! the error against the 16 × 16-ray box-filtered `f64` reference in linear light
 //! (`reference::aa`), in 8-bit levels (the largest channel difference per pixel),
-//! over all pixels and over the edge pixels; the share of edge pixels; and how far
-//! `Adaptive(4)` is from `Grid(4)`.
+//! over all pixels and over the edge pixels; the share of edge pixels; the pixels
+//! where `Center` is more than 2 levels off `Grid(4)` (those an adaptive render within
+//! 2 levels of `Grid(4)` must trace with the grid); and how far `Adaptive(4)` is from
+//! `Grid(4)`.
 //!
 //! ```text
 //! cargo run --release --example aa_table
@@ -69,11 +71,11 @@ fn table<const N: usize, const L: usize, const P: usize, const D: usize>(
     let apart = |x: &[Rgb888], y: &[Rgb888]| -> Vec<u8> {
         x.iter()
             .zip(y)
-            .map(|(g, a)| {
+            .map(|(p, q)| {
                 [
-                    g.r().abs_diff(a.r()),
-                    g.g().abs_diff(a.g()),
-                    g.b().abs_diff(a.b()),
+                    p.r().abs_diff(q.r()),
+                    p.g().abs_diff(q.g()),
+                    p.b().abs_diff(q.b()),
                 ]
                 .into_iter()
                 .max()
@@ -81,9 +83,9 @@ fn table<const N: usize, const L: usize, const P: usize, const D: usize>(
             })
             .collect()
     };
-    // Center against Grid(4): where the centre ray alone is more than 2 levels off the
-    // grid, an adaptive render within 2 levels of Grid(4) must trace the grid's rays
-    // (all but 0.1 % of the pixels): the fewest edge pixels any rule can have.
+    // Center against Grid(4): the pixels where the centre ray alone is more than 2
+    // levels off the grid. An adaptive render within 2 levels of Grid(4) on 99.9 % of
+    // the pixels must trace the grid in all of them but at most 0.1 % of the image.
     let must = apart(center, grid4).iter().filter(|&&d| d > 2).count();
     // Adaptive(4) against Grid(4): pixels more than 2 levels apart, the largest and where.
     let w = size.width as usize;

@@ -338,7 +338,7 @@ ratio within a round",
         ) {
             println!(
                 "  the default without any shadow ray (shadows = false) {v:.2} ns/pixel; \
-the literal render's time over it, the speed-up if shadow rays cost nothing: {r:.2}x ({lo:.2}–{hi:.2})"
+the literal render's time over it, about the speed-up if shadow rays cost nothing: {r:.2}x ({lo:.2}–{hi:.2})"
             );
         }
     }

@@ -61,6 +61,9 @@ pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
 /// spheres) with the strategy types the dispatch chose: stepping `S`, sphere test `T`,
 /// square root `Q`.
 ///
+/// The per-sphere data holds `M` spheres, at least the scene's `scene.spheres().len()`
+/// (the caller's choice: `N`, or fewer where `Auto` sizes its frame by its own limit).
+///
 /// Out of line: the per-sphere constants live in this function's own stack frame, so
 /// a render pays for its own method's (a `Scene<64>` with the robust test keeps 68 B a
 /// sphere, with forward differences 116 B), not for the largest of all the methods
@@ -68,6 +71,7 @@ pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
 #[inline(never)]
 pub(crate) fn render<
     const N: usize,
+    const M: usize,
     const L: usize,
     const P: usize,
     const D: usize,
@@ -88,7 +92,7 @@ pub(crate) fn render<
     // once, never moved (a by-value `Frame` holding the `Vec` would be copied on
     // return, doubling the render's stack).
     let mut spheres = Vec::new();
-    let Some(frame) = Frame::<T, Lab1>::new::<N, L, P, D, S>(
+    let Some(frame) = Frame::<T, Lab1>::new::<N, M, L, P, D, S>(
         scene,
         camera,
         options,
@@ -100,12 +104,13 @@ pub(crate) fn render<
         return Ok(()); // nothing visible
     };
     let (w, background) = (camera.w(), frame.background);
-    rows.draw_rows::<N, K, S, T, Q, Lab1, _>(&frame, sink, |_, _, _| Lab1Row { w, background })
+    rows.draw_rows::<M, K, S, T, Q, Lab1, _>(&frame, sink, |_, _, _| Lab1Row { w, background })
 }
 
 impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
     /// Clips the image (placed at `offset`) to `clip` and builds every sphere's
-    /// per-frame constants into `spheres`; `None` if nothing is visible. `others` is
+    /// per-frame constants into `spheres` (`M` at least the scene's sphere count: a
+    /// sphere beyond `M` would be left out); `None` if nothing is visible. `others` is
     /// the largest eye-relative magnitude of the scene's other primitives (planes,
     /// point lights), which the frame's [`Scale`] must cover too (0 when there are
     /// none).
@@ -113,13 +118,20 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
     /// Out of line: its temporaries (the f64 silhouette computations) are dead before
     /// the scanline loop starts, so they do not add to the pixel loop's stack.
     #[inline(never)]
-    pub(crate) fn new<const N: usize, const L: usize, const P: usize, const D: usize, S: Stepper>(
+    pub(crate) fn new<
+        const N: usize,
+        const M: usize,
+        const L: usize,
+        const P: usize,
+        const D: usize,
+        S: Stepper,
+    >(
         scene: &Scene<N, L, P, D>,
         camera: &'a Camera,
         options: Options,
         clip: Rectangle,
         offset: Point,
-        spheres: &'a mut Vec<FrameSphere<T, Sh>, N>,
+        spheres: &'a mut Vec<FrameSphere<T, Sh>, M>,
         others: f32,
     ) -> Option<Self> {
         let size = camera.size();
@@ -153,7 +165,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
             // and the optimiser cannot see that a `Scene<N>` never holds more than N.
             spheres.clear();
             for s in scene.spheres() {
-                Self::push_sphere::<N, S>(spheres, s, camera, options, &row, step_err, scale);
+                Self::push_sphere::<M, S>(spheres, s, camera, options, &row, step_err, scale);
                 for m in [(s.center - eye).max_abs(), s.radius.abs()] {
                     // Comparisons pass NaN over: a NaN sphere never decides the scale.
                     if m > largest {
@@ -210,7 +222,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
                     .extent()
                     .or_else(|| Silhouette::new(geom.l, radius, camera, T::MARGIN, 0.0).extent())
             };
-            // Never fails: the scene holds at most N spheres.
+            // Never fails: the caller's M is at least the scene's sphere count.
             let _ = spheres.push(FrameSphere {
                 geom,
                 test: T::consts(&geom, row, extent),

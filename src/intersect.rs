@@ -141,6 +141,9 @@ pub(crate) trait TestStrategy {
     type State: Copy;
     /// How far the test's rounding can widen its hit set (span culling's margin).
     const MARGIN: Margin;
+    /// Whether this is [`Auto`], which a frame of a scene holding more than
+    /// [`AUTO_FD_CAPACITY`] spheres replaces by [`Robust`].
+    const AUTO: bool = false;
     /// The per-frame constants of one sphere; `extent()` computes its silhouette's size
     /// on the image (`None` when it is not a bounded ellipse), for a test that needs it.
     fn consts(g: &SphereGeom, row: &RowGeometry, extent: impl FnOnce() -> Option<Extent>) -> Self::Consts;
@@ -328,6 +331,26 @@ pub(crate) struct Auto;
 /// operations) is already < 2 per pixel at K = 16. K = 16 keeps those differences to a
 /// few dozen pixels per frame.
 pub const FD_ANCHOR_INTERVAL: u32 = 16;
+
+/// The most spheres a scene may hold for
+/// [`SphereTest::Auto`](crate::SphereTest::Auto) to take forward differences; a frame
+/// of a scene holding more is drawn with the robust test for every sphere, bit for bit
+/// `Robust`'s render. A render of a scene type with a larger capacity (`Scene<64>`)
+/// holding at most this many spheres builds its per-sphere data for this many, not for
+/// the capacity: the pixels follow the spheres a scene holds, never its type.
+///
+/// Why: a frame's per-sphere data is sized by its capacity, and forward differences
+/// keep constants and row state for every sphere. Measured on the Cortex-M4F
+/// (`bash .ci/firmware`, the 64-sphere `crowd` scene as `Scene<64>`): about 148 B of
+/// stack a sphere with forward differences, 84 B with the robust test (10,256 B
+/// against 6,132 B for `crowd`). So a `Scene<64>` needs at most about 6 KiB with either
+/// choice of this rule (32 forward-differenced spheres ≈ 4.7 KB plus the frame's
+/// fixed part: an estimate from those per-sphere figures, not a measured render). On
+/// the Cortex-M4F the robust test also costs `crowd` fewer instructions a pixel than
+/// forward differences (109.6 against 116.9) and about the same estimated cycles
+/// (+0.16 %); on a host with fast division, and on a chip without an FPU, it is
+/// slower (`docs/speed_vs_accuracy.md`, README "On a Cortex-M0 and RV32").
+pub const AUTO_FD_CAPACITY: usize = 32;
 
 /// The forward differences' per-frame constants of one sphere.
 #[derive(Clone, Copy, Debug)]
@@ -562,6 +585,7 @@ impl TestStrategy for Auto {
     type Consts = FdConsts;
     type State = FdState;
     const MARGIN: Margin = Margin::Linear;
+    const AUTO: bool = true;
 
     #[inline(always)]
     fn consts(g: &SphereGeom, row: &RowGeometry, extent: impl FnOnce() -> Option<Extent>) -> FdConsts {

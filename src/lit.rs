@@ -407,7 +407,7 @@ fn render_with<
         }
     }
     let mut spheres = Vec::new();
-    let Some(frame) = Frame::<T, LitSphere>::new::<N, L, P, D, S>(
+    let Some(frame) = Frame::<T, LitSphere>::new::<N, N, L, P, D, S>(
         scene,
         camera,
         options,

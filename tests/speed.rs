@@ -6,7 +6,7 @@
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
-use embedded_raytracer::intersect::FD_ANCHOR_INTERVAL;
+use embedded_raytracer::intersect::{AUTO_FD_CAPACITY, FD_ANCHOR_INTERVAL};
 use embedded_raytracer::{Camera, Method, Options, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3};
 
 mod common;
@@ -168,6 +168,74 @@ fn forward_diff_breaks_without_anchors_on_a_huge_row() {
 
 fn trace_method<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method) -> Vec<Traced> {
     trace_with(scene, camera, method, Options::DEFAULT)
+}
+
+/// The first `count` spheres of `crowd` as a `Scene<M>`.
+fn crowd_prefix<const M: usize>(crowd: &Scene<{ common::MAX_SPHERES }>, count: usize) -> Scene<M> {
+    let mut scene = Scene::new(crowd.background());
+    for s in &crowd.spheres()[..count] {
+        scene.push(*s).unwrap();
+    }
+    scene
+}
+
+/// `Auto` by the scene's size (`AUTO_FD_CAPACITY`): a scene of more spheres than that
+/// is drawn with the robust test for every sphere, one of at most that many with
+/// forward differences, whatever the scene type's capacity. Bit for bit, with every
+/// stepping and root; each comparison could fail, since forward differences and the
+/// robust test round `crowd` differently.
+#[test]
+fn auto_takes_robust_above_its_capacity() {
+    let crowd = load("crowd");
+    assert_eq!(crowd.scene.spheres().len(), 64);
+    assert_eq!(AUTO_FD_CAPACITY, 32);
+    let camera = &crowd.camera;
+    for stepping in Stepping::ALL {
+        for sqrt in Sqrt::ALL {
+            let with = |test| Method::new(stepping, test, sqrt);
+            let name = format!("{stepping}/{sqrt}");
+            // 64 spheres, in the host's 256-sphere type and in a 64-sphere one.
+            let auto = trace_method(&crowd.scene, camera, with(SphereTest::Auto));
+            let robust = trace_method(&crowd.scene, camera, with(SphereTest::Robust));
+            let fd = trace_method(&crowd.scene, camera, with(SphereTest::ForwardDiff));
+            assert!(auto == robust, "crowd {name}: auto differs from robust");
+            assert!(
+                fd != robust,
+                "crowd {name}: forward-diff equals robust, nothing tested"
+            );
+            let exact: Scene<64> = crowd_prefix(&crowd.scene, 64);
+            assert!(
+                trace_method(&exact, camera, with(SphereTest::Auto)) == robust,
+                "Scene<64> {name}"
+            );
+            // 33 spheres: still above.
+            let above: Scene<64> = crowd_prefix(&crowd.scene, 33);
+            let auto = trace_method(&above, camera, with(SphereTest::Auto));
+            assert!(
+                auto == trace_method(&above, camera, with(SphereTest::Robust)),
+                "33 {name}"
+            );
+            // 32 spheres: forward differences, in a type above the limit (its frame sized
+            // by the limit) and in one at it.
+            let at: Scene<64> = crowd_prefix(&crowd.scene, 32);
+            let auto = trace_method(&at, camera, with(SphereTest::Auto));
+            let fd = trace_method(&at, camera, with(SphereTest::ForwardDiff));
+            let robust = trace_method(&at, camera, with(SphereTest::Robust));
+            assert!(
+                auto == fd,
+                "32 in Scene<64> {name}: auto differs from forward-diff"
+            );
+            assert!(
+                fd != robust,
+                "32 {name}: forward-diff equals robust, nothing tested"
+            );
+            let small: Scene<32> = crowd_prefix(&crowd.scene, 32);
+            assert!(
+                trace_method(&small, camera, with(SphereTest::Auto)) == fd,
+                "Scene<32> {name}"
+            );
+        }
+    }
 }
 
 /// `Auto` is forward differences for every sphere whose bound allows it (all of the

@@ -169,13 +169,11 @@ struct Plan {
 ///
 /// Out of line, and so are both paths: the f32 path's per-sphere constants and the
 /// integer kernel's are never on the stack together (a `Scene<64>` would not fit a
-/// 16 KiB Cortex-M0 otherwise). The f32 frame holds `M ≥ scene.spheres().len()`
-/// spheres (see `frame::render`).
+/// 16 KiB Cortex-M0 otherwise).
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 pub(crate) fn render_or_f32<
     const N: usize,
-    const M: usize,
     const L: usize,
     const P: usize,
     const D: usize,
@@ -195,14 +193,13 @@ pub(crate) fn render_or_f32<
     if let Some(done) = render::<N, K>(spheres, background, camera, options, clip, offset, sink) {
         return done;
     }
-    f32_frame::<N, M, L, P, D, K, S, T, Q>(scene, camera, options, clip, offset, sink)
+    f32_frame::<N, L, P, D, K, S, T, Q>(scene, camera, options, clip, offset, sink)
 }
 
 /// The f32 method's frame, out of line (see [`render_or_f32`]).
 #[inline(never)]
 fn f32_frame<
     const N: usize,
-    const M: usize,
     const L: usize,
     const P: usize,
     const D: usize,
@@ -218,7 +215,7 @@ fn f32_frame<
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
-    crate::frame::render::<N, M, L, P, D, K, S, T, Q, crate::sampling::CenterRows>(
+    crate::frame::render::<N, L, P, D, K, S, T, Q, crate::sampling::CenterRows>(
         scene,
         camera,
         options,

@@ -13,7 +13,7 @@ use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
 use crate::camera::Camera;
-use crate::intersect::{RowGeometry, Scale, SphereGeom, TestStrategy};
+use crate::intersect::{Auto, Robust, RowGeometry, Scale, SphereGeom, TestStrategy, AUTO_FD_CAPACITY};
 use crate::math::SqrtFn;
 use crate::render::Options;
 use crate::sampling::Rows;
@@ -61,15 +61,100 @@ pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
 /// spheres) with the strategy types the dispatch chose: stepping `S`, sphere test `T`,
 /// square root `Q`.
 ///
-/// The per-sphere data holds `M` spheres, at least the scene's `scene.spheres().len()`
-/// (the caller's choice: `N`, or fewer where `Auto` sizes its frame by its own limit).
-///
 /// Out of line: the per-sphere constants live in this function's own stack frame, so
 /// a render pays for its own method's (a `Scene<64>` with the robust test keeps 68 B a
 /// sphere, with forward differences 116 B), not for the largest of all the methods
 /// the one dispatch could have chosen.
 #[inline(never)]
 pub(crate) fn render<
+    const N: usize,
+    const L: usize,
+    const P: usize,
+    const D: usize,
+    K: RowSink,
+    S: Stepper,
+    T: TestStrategy,
+    Q: SqrtFn,
+    G: Rows,
+>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    options: Options,
+    (clip, rows): (Rectangle, G),
+    offset: Point,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    // `Auto` in a scene type above its limit (see `AUTO_FD_CAPACITY`); a capacity
+    // within it never reaches the comparison.
+    if T::AUTO && N > AUTO_FD_CAPACITY {
+        return auto_above_limit::<N, L, P, D, K, S, Q, G>(
+            scene,
+            camera,
+            options,
+            (clip, rows),
+            offset,
+            sink,
+        );
+    }
+    frame_of::<N, N, L, P, D, K, S, T, Q, G>(scene, camera, options, (clip, rows), offset, sink)
+}
+
+/// `Auto` in a scene type of more than [`AUTO_FD_CAPACITY`] spheres' capacity: the
+/// robust test for a scene holding more than that many, else forward differences in a
+/// frame sized for that many (not for the capacity).
+#[inline(never)]
+fn auto_above_limit<
+    const N: usize,
+    const L: usize,
+    const P: usize,
+    const D: usize,
+    K: RowSink,
+    S: Stepper,
+    Q: SqrtFn,
+    G: Rows,
+>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    options: Options,
+    frame: (Rectangle, G),
+    offset: Point,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    // Each branch out of line, so that their frames never add up.
+    if scene.spheres().len() > AUTO_FD_CAPACITY {
+        render::<N, L, P, D, K, S, Robust, Q, G>(scene, camera, options, frame, offset, sink)
+    } else {
+        auto_within_limit::<N, L, P, D, K, S, Q, G>(scene, camera, options, frame, offset, sink)
+    }
+}
+
+/// `Auto` in a frame sized for [`AUTO_FD_CAPACITY`] spheres (the scene holds at most
+/// that many).
+#[inline(never)]
+fn auto_within_limit<
+    const N: usize,
+    const L: usize,
+    const P: usize,
+    const D: usize,
+    K: RowSink,
+    S: Stepper,
+    Q: SqrtFn,
+    G: Rows,
+>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    options: Options,
+    frame: (Rectangle, G),
+    offset: Point,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    frame_of::<N, AUTO_FD_CAPACITY, L, P, D, K, S, Auto, Q, G>(scene, camera, options, frame, offset, sink)
+}
+
+/// [`render`]'s frame, its per-sphere data holding `M` spheres, at least the scene's
+/// `scene.spheres().len()`.
+#[inline(always)]
+fn frame_of<
     const N: usize,
     const M: usize,
     const L: usize,

@@ -32,7 +32,7 @@ use heapless::Vec;
 
 use crate::camera::Camera;
 use crate::frame::{Frame, FrameSphere};
-use crate::intersect::{Scale, SphereGeom, TestStrategy};
+use crate::intersect::{Auto, Robust, Scale, SphereGeom, TestStrategy, AUTO_FD_CAPACITY};
 use crate::light::Light;
 use crate::material::Material;
 use crate::math::{sqrt_exact, SqrtFn, UNIT_ROUNDOFF};
@@ -332,6 +332,91 @@ impl<const N: usize> ShadowRow<N> {
 /// largest of all the methods the one dispatch could have chosen.
 #[inline(never)]
 pub(crate) fn render<
+    const N: usize,
+    const L: usize,
+    const P: usize,
+    const D: usize,
+    K: RowSink,
+    S: Stepper,
+    T: TestStrategy,
+    Q: SqrtFn,
+    G: Rows,
+>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    options: Options,
+    (clip, rows): (Rectangle, G),
+    offset: Point,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    // `Auto` in a scene type above its limit (see `AUTO_FD_CAPACITY`); a capacity
+    // within it never reaches the comparison.
+    if T::AUTO && N > AUTO_FD_CAPACITY {
+        return auto_above_limit::<N, L, P, D, K, S, Q, G>(
+            scene,
+            camera,
+            options,
+            (clip, rows),
+            offset,
+            sink,
+        );
+    }
+    by_origin::<N, L, P, D, K, S, T, Q, G>(scene, camera, options, (clip, rows), offset, sink)
+}
+
+/// `Auto` in a scene type of more than [`AUTO_FD_CAPACITY`] spheres' capacity: the
+/// robust test for a scene holding more than that many, else `Auto` (each branch out
+/// of line, so that their frames never add up).
+#[inline(never)]
+fn auto_above_limit<
+    const N: usize,
+    const L: usize,
+    const P: usize,
+    const D: usize,
+    K: RowSink,
+    S: Stepper,
+    Q: SqrtFn,
+    G: Rows,
+>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    options: Options,
+    frame: (Rectangle, G),
+    offset: Point,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    if scene.spheres().len() > AUTO_FD_CAPACITY {
+        render::<N, L, P, D, K, S, Robust, Q, G>(scene, camera, options, frame, offset, sink)
+    } else {
+        auto_within_limit::<N, L, P, D, K, S, Q, G>(scene, camera, options, frame, offset, sink)
+    }
+}
+
+/// `Auto` in a scene holding at most [`AUTO_FD_CAPACITY`] spheres.
+#[inline(never)]
+fn auto_within_limit<
+    const N: usize,
+    const L: usize,
+    const P: usize,
+    const D: usize,
+    K: RowSink,
+    S: Stepper,
+    Q: SqrtFn,
+    G: Rows,
+>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    options: Options,
+    frame: (Rectangle, G),
+    offset: Point,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    by_origin::<N, L, P, D, K, S, Auto, Q, G>(scene, camera, options, frame, offset, sink)
+}
+
+/// [`render`]'s frame with the secondary rays' origin rule, chosen once per frame.
+#[inline(always)]
+fn by_origin<
     const N: usize,
     const L: usize,
     const P: usize,

@@ -19,7 +19,7 @@ use crate::dispatch::{dispatch, Visit};
 use crate::error::{BandError, IntegerError};
 use crate::fixed;
 use crate::frame;
-use crate::intersect::{Robust, TestStrategy, AUTO_FD_CAPACITY, FD_ANCHOR_INTERVAL};
+use crate::intersect::{TestStrategy, FD_ANCHOR_INTERVAL};
 use crate::lit::{self, SecondaryOrigin};
 use crate::math::SqrtFn;
 use crate::method::{Arithmetic, Method};
@@ -574,18 +574,20 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
     type Output = Result<(), K::Error>;
     #[inline(always)]
     fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Self::Output {
-        // `Auto` by the scene's size, once per frame (see `AUTO_FD_CAPACITY`): a scene
-        // of up to that many spheres may take forward differences, in a frame sized for
-        // that many; a larger one is drawn with the robust test. A capacity within the
-        // limit never reaches the comparison.
-        if T::AUTO && N > AUTO_FD_CAPACITY {
-            if self.scene.spheres().len() > AUTO_FD_CAPACITY {
-                self.sampled::<N, S, Robust, Q>()
-            } else {
-                self.sampled::<AUTO_FD_CAPACITY, S, T, Q>()
+        // The sampling, once per frame: `Center` is the one-ray row loop.
+        match self.sampling {
+            Sampling::Center => self.with_rows::<S, T, Q, _>(CenterRows),
+            Sampling::Grid(n) => self.with_rows::<S, T, Q, _>(GridRows(n.get())),
+            // A Lab #1 scene's colours jump only at silhouettes: its edge pixels come
+            // from them; a scene with features shares samples between neighbours.
+            Sampling::Adaptive(n) if !Scene::<N, L, P, D>::FEATURES => {
+                let clip = self.clip;
+                self.with_rows::<S, T, Q, _>(SpanAdaptiveRows { n: n.get(), clip })
             }
-        } else {
-            self.sampled::<N, S, T, Q>()
+            Sampling::Adaptive(n) => {
+                let clip = self.clip;
+                self.with_rows::<S, T, Q, _>(AdaptiveRows { n: n.get(), clip })
+            }
         }
     }
 }
@@ -593,32 +595,8 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
 impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
     Frame<'_, '_, N, L, P, D, K>
 {
-    /// The sampling, once per frame, into a Lab #1 frame of `M ≥ scene.spheres().len()`
-    /// spheres' capacity.
     #[inline(always)]
-    fn sampled<const M: usize, S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Result<(), K::Error> {
-        // `Center` is the one-ray row loop.
-        match self.sampling {
-            Sampling::Center => self.with_rows::<M, S, T, Q, _>(CenterRows),
-            Sampling::Grid(n) => self.with_rows::<M, S, T, Q, _>(GridRows(n.get())),
-            // A Lab #1 scene's colours jump only at silhouettes: its edge pixels come
-            // from them; a scene with features shares samples between neighbours.
-            Sampling::Adaptive(n) if !Scene::<N, L, P, D>::FEATURES => {
-                let clip = self.clip;
-                self.with_rows::<M, S, T, Q, _>(SpanAdaptiveRows { n: n.get(), clip })
-            }
-            Sampling::Adaptive(n) => {
-                let clip = self.clip;
-                self.with_rows::<M, S, T, Q, _>(AdaptiveRows { n: n.get(), clip })
-            }
-        }
-    }
-
-    #[inline(always)]
-    fn with_rows<const M: usize, S: Stepper, T: TestStrategy, Q: SqrtFn, G: Rows>(
-        self,
-        rows: G,
-    ) -> Result<(), K::Error> {
+    fn with_rows<S: Stepper, T: TestStrategy, Q: SqrtFn, G: Rows>(self, rows: G) -> Result<(), K::Error> {
         // The scene's type decides the loop at compile time: Lab #1 on spheres, or the
         // scene-features path (lights, planes, mirrors).
         if Scene::<N, L, P, D>::FEATURES {
@@ -634,7 +612,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
             // The arithmetic, once per frame: the integer kernel where its rule takes the
             // frame, else this f32 method (both out of line, so their stacks never add).
             // Sub-pixel rays are the f32 method's.
-            fixed::render_or_f32::<N, M, L, P, D, K, S, T, Q>(
+            fixed::render_or_f32::<N, L, P, D, K, S, T, Q>(
                 self.scene,
                 self.camera,
                 self.options,
@@ -643,7 +621,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
                 self.sink,
             )
         } else {
-            frame::render::<N, M, L, P, D, K, S, T, Q, G>(
+            frame::render::<N, L, P, D, K, S, T, Q, G>(
                 self.scene,
                 self.camera,
                 self.options,

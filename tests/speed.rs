@@ -7,7 +7,9 @@
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_raytracer::intersect::{AUTO_FD_CAPACITY, FD_ANCHOR_INTERVAL};
-use embedded_raytracer::{Camera, Method, Options, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3};
+use embedded_raytracer::{
+    Camera, Light, Method, Options, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3,
+};
 
 mod common;
 use common::{load, random_case, shrink, Rng, Traced, SCENES};
@@ -235,6 +237,34 @@ fn auto_takes_robust_above_its_capacity() {
                 "Scene<32> {name}"
             );
         }
+    }
+    // The path of scenes with lights follows the same rule.
+    let lit = |count: usize| {
+        let mut scene: Scene<64, 1> = Scene::new(crowd.scene.background());
+        for s in &crowd.scene.spheres()[..count] {
+            scene.push(*s).unwrap();
+        }
+        scene
+            .push_light(Light::directional(Vec3::new(-1.0, -1.0, -1.0), 1.0))
+            .unwrap();
+        scene
+    };
+    let method = |test| Method::new(Stepping::Direct, test, Sqrt::Exact);
+    for (count, equal, other) in [
+        (64, SphereTest::Robust, SphereTest::ForwardDiff),
+        (32, SphereTest::ForwardDiff, SphereTest::Robust),
+    ] {
+        let scene = lit(count);
+        let render = |test| common::trace(Render::new(&scene, camera).with_method(method(test)));
+        let auto = render(SphereTest::Auto);
+        assert!(
+            auto == render(equal),
+            "lit, {count} spheres: auto differs from {equal}"
+        );
+        assert!(
+            auto != render(other),
+            "lit, {count} spheres: {equal} equals {other}, nothing tested"
+        );
     }
 }
 

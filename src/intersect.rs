@@ -350,6 +350,33 @@ pub const FD_ANCHOR_INTERVAL: u32 = 16;
 /// forward differences (109.6 against 116.9) and about the same estimated cycles
 /// (+0.16 %); on a host with fast division, and on a chip without an FPU, it is
 /// slower (`docs/speed_vs_accuracy.md`, README "On a Cortex-M0 and RV32").
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb888, prelude::*};
+/// use embedded_raytracer::intersect::AUTO_FD_CAPACITY;
+/// use embedded_raytracer::{Camera, Method, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3};
+///
+/// // A row of small spheres, one more than the limit.
+/// let mut scene: Scene<64> = Scene::new(Rgb888::BLACK);
+/// for k in 0..=AUTO_FD_CAPACITY {
+///     let x = k as f32 * 0.3 - 5.0;
+///     scene.push(Sphere::new(Vec3::new(x, 0.0, 0.0), 0.2, Rgb888::WHITE))?;
+/// }
+/// let camera = Camera::new(Vec3::new(0.0, 0.0, 8.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0),
+///     1.2, Size::new(96, 32))?;
+/// let pixels = |test| {
+///     let mut out = Vec::new();
+///     let render: Render<64, Rgb888> = Render::new(&scene, &camera);
+///     render
+///         .with_method(Method::new(Stepping::Direct, test, Sqrt::Exact))
+///         .trace(|s| out.push((s.hit.map(|h| h.t.to_bits()), s.color)));
+///     out
+/// };
+/// assert!(pixels(SphereTest::Auto) == pixels(SphereTest::Robust));
+/// // (Forward differences round differently here, so the test is the robust one.)
+/// assert!(pixels(SphereTest::ForwardDiff) != pixels(SphereTest::Robust));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub const AUTO_FD_CAPACITY: usize = 32;
 
 /// The forward differences' per-frame constants of one sphere.

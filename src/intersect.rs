@@ -335,17 +335,20 @@ pub const FD_ANCHOR_INTERVAL: u32 = 16;
 /// The most spheres a scene may hold for
 /// [`SphereTest::Auto`](crate::SphereTest::Auto) to take forward differences; a frame
 /// of a scene holding more is drawn with the robust test for every sphere, bit for bit
-/// `Robust`'s render. A render of a scene type with a larger capacity (`Scene<64>`)
-/// holding at most this many spheres builds its per-sphere data for this many, not for
-/// the capacity: the pixels follow the spheres a scene holds, never its type.
+/// `Robust`'s render. The pixels follow the spheres a scene holds, never its type. A
+/// render without lights, planes or mirrors of a scene type with a larger capacity
+/// (`Scene<64>`) holding at most this many spheres builds its per-sphere data for this
+/// many, not for the capacity (the path with lights keeps its capacity's arrays).
 ///
 /// Why: a frame's per-sphere data is sized by its capacity, and forward differences
 /// keep constants and row state for every sphere. Measured on the Cortex-M4F
 /// (`bash .ci/firmware`, the 64-sphere `crowd` scene as `Scene<64>`): about 148 B of
 /// stack a sphere with forward differences, 84 B with the robust test (10,256 B
-/// against 6,132 B for `crowd`). So a `Scene<64>` needs at most about 6 KiB with either
-/// choice of this rule (32 forward-differenced spheres ≈ 4.7 KB plus the frame's
-/// fixed part: an estimate from those per-sphere figures, not a measured render). On
+/// against 6,132 B for `crowd`). So the `f32` render of a `Scene<64>` without lights
+/// needs at most about 6 KiB there with either choice of this rule (32
+/// forward-differenced spheres ≈ 4.7 KB plus the frame's fixed part: an estimate from
+/// those per-sphere figures, not a measured render; the integer kernel of a chip
+/// without an FPU keeps its own per-sphere data). On
 /// the Cortex-M4F the robust test also costs `crowd` fewer instructions a pixel than
 /// forward differences (109.6 against 116.9) and about the same estimated cycles
 /// (+0.16 %); on a host with fast division, and on a chip without an FPU, it is

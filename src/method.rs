@@ -194,8 +194,8 @@ pub const FPU_LESS: bool = cfg!(any(
 /// standard scene, where incremental stepping loses 14 edge pixels on the 1920-wide
 /// `drift` scene) and, with span culling, costs its three multiplies only where a
 /// sphere can be hit; `Auto` takes the forward-differenced test where its error bound
-/// allows (every sphere of the 5-sphere standard scenes, which is on the Pareto front;
-/// `crowd`'s 64 spheres take the robust test, for the stack); the
+/// allows (every sphere of the 5-sphere standard scenes, where it is on the Pareto
+/// front; `crowd`'s 64 spheres take the robust test, for the stack); the
 /// exact root keeps shading within one level of the reference. On a target without an
 /// FPU ([`FPU_LESS`]) the default adds the integer kernel ([`Arithmetic::Integer`]),
 /// which draws with this `f32` method where its rule does not take a frame.

@@ -213,9 +213,11 @@ fn auto_takes_robust_above_its_capacity() {
             // 33 spheres: still above.
             let above: Scene<64> = crowd_prefix(&crowd.scene, 33);
             let auto = trace_method(&above, camera, with(SphereTest::Auto));
+            let robust = trace_method(&above, camera, with(SphereTest::Robust));
+            assert!(auto == robust, "33 {name}: auto differs from robust");
             assert!(
-                auto == trace_method(&above, camera, with(SphereTest::Robust)),
-                "33 {name}"
+                trace_method(&above, camera, with(SphereTest::ForwardDiff)) != robust,
+                "33 {name}: forward-diff equals robust, nothing tested"
             );
             // 32 spheres: forward differences, in a type above the limit (its frame sized
             // by the limit) and in one at it.

@@ -1,16 +1,10 @@
-//! Build glue: the `host_std` cfg (feature `std` on a target with an OS), and for
-//! bare-metal targets the firmware examples' memory map, written to `OUT_DIR` as
-//! `memory.x` (the runtime's `link.x` includes it):
+//! Build glue: the `host_std` cfg (feature `std` on a target with an OS), the
+//! anti-aliasing's sRGB tables, and `-Tlink.x` for the root firmware example.
 //!
-//! | target | memory map | machine |
-//! |---|---|---|
-//! | hard-float ARM (`thumbv7em-none-eabihf`) | `memory-stm32f4.x` | STM32F405/407, QEMU `netduinoplus2` |
-//! | other ARM (`thumbv6m-none-eabi`) | `memory-nrf51.x` | nRF51, QEMU `microbit` |
-//! | RV32 (`riscv32imc-unknown-none-elf`) | `memory-rv32-virt.x` | QEMU `virt` |
-//!
-//! No file in the package root may be called `memory.x`: the linker runs there and
-//! looks for an `INCLUDE`d script in its working directory before the search path, so
-//! a root `memory.x` would be every target's map.
+//! Nothing here reaches a crate that depends on this library: no linker search path and
+//! no library-wide link argument. `-Tlink.x` (cortex-m-rt's script, which includes the
+//! root `memory.x`) is passed to this package's own examples only, and only on
+//! bare-metal ARM.
 use std::env;
 use std::path::PathBuf;
 
@@ -19,34 +13,15 @@ fn main() {
     let std = env::var_os("CARGO_FEATURE_STD").is_some();
     let target_os = env::var("CARGO_CFG_TARGET_OS").unwrap_or_default();
     let target_arch = env::var("CARGO_CFG_TARGET_ARCH").unwrap_or_default();
-    let target_abi = env::var("CARGO_CFG_TARGET_ABI").unwrap_or_default();
     let bare_metal = target_os == "none";
     if std && !bare_metal {
         println!("cargo::rustc-cfg=host_std");
     }
-    // The same split as the firmware dev-dependencies in Cargo.toml.
-    let memory: Option<&[u8]> = match (bare_metal, target_arch.as_str(), target_abi.as_str()) {
-        (true, "arm", "eabihf") => Some(include_bytes!("memory-stm32f4.x")),
-        (true, "arm", _) => Some(include_bytes!("memory-nrf51.x")),
-        (true, "riscv32", _) => Some(include_bytes!("memory-rv32-virt.x")),
-        _ => None,
-    };
-    // On the linker search path, where `-Tlink.x` (.cargo/config.toml) finds it through
-    // `INCLUDE memory.x`.
-    if let Some(memory) = memory {
-        let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-        std::fs::write(out.join("memory.x"), memory).expect("write memory.x to OUT_DIR");
-        println!("cargo::rustc-link-search={}", out.display());
+    if bare_metal && target_arch == "arm" {
+        println!("cargo::rustc-link-arg-examples=-Tlink.x");
     }
     srgb_tables();
-    for file in [
-        "memory-stm32f4.x",
-        "memory-nrf51.x",
-        "memory-rv32-virt.x",
-        "build.rs",
-    ] {
-        println!("cargo::rerun-if-changed={file}");
-    }
+    println!("cargo::rerun-if-changed=build.rs");
 }
 
 /// The anti-aliasing's sRGB tables (IEC 61966-2-1), written to `OUT_DIR/srgb_tables.rs`

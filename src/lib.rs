@@ -64,8 +64,8 @@
 //!    shadow ray per light, and the reflection loop; secondary rays start as
 //!    [`SecondaryOrigin`] says (no epsilon by default).
 //! 7. **Sink** (`sink.rs`): each row, as an iterator, into the target's
-//!    `fill_contiguous` (or to a callback for [`Render::trace`]); [`dither`] and
-//!    [`hash`] are targets that adapt or summarise the stream.
+//!    `fill_contiguous` (or to a callback for [`Render::trace`]); [`dither`] adapts the
+//!    stream to 1-, 2- and 4-bit displays.
 //!
 //! `ARCHITECTURE.md` in the repository says where to add a primitive, a light, a
 //! sample per pixel or a number format.
@@ -89,12 +89,14 @@
 //!
 //! ## Features
 //!
-//! - `std` (default): [`scene_file`] (TOML scene files), [`reference`](mod@reference) (the `f64`
-//!   reference renderer, error metrics and stability sweeps) and host tooling. Inert on
-//!   bare-metal targets (`target_os = "none"`); use `default-features = false` in
-//!   firmware to make that explicit.
-//! - `window`: the desktop preview example (`examples/simulator.rs`, SDL2 through
-//!   embedded-graphics-simulator); adds nothing to the library.
+//! - `std` (default): `scene_file`, TOML scene files with field-level errors (toml and
+//!   serde). Inert on bare-metal targets (`target_os = "none"`); use
+//!   `default-features = false` in firmware to make that explicit.
+//! - `defmt`: `defmt::Format` on the errors and the small public types.
+//!
+//! The render CLI, the desktop preview, the boards and the accuracy lab (the `f64`
+//! reference renderer, the sweeps, the benchmarks) are packages of their own in the
+//! repository; none of them is a dependency of this crate.
 #![no_std]
 #![deny(missing_docs)]
 #![deny(
@@ -125,7 +127,6 @@ pub mod dither;
 pub mod error;
 mod fixed;
 mod frame;
-pub mod hash;
 pub mod intersect;
 pub mod light;
 mod limits;
@@ -134,8 +135,6 @@ pub mod material;
 pub mod math;
 pub mod method;
 pub mod plane;
-#[cfg(host_std)]
-pub mod reference;
 pub mod render;
 pub mod sampling;
 mod scanline;

@@ -43,7 +43,6 @@
 #![no_std]
 #![no_main]
 
-#[path = "../../../examples/common/scenes.rs"]
 mod scenes;
 
 mod orbit;
@@ -52,7 +51,6 @@ mod split;
 // `trace_band`, `BANDS` and `BAND_PIXELS` there are the STM32 example's 16-row bands;
 // here the bands come from `split.rs`.
 #[allow(dead_code)]
-#[path = "../../../examples/common/st7789_band.rs"]
 mod st7789_band;
 
 use core::cell::Cell;

@@ -1,0 +1,15 @@
+//! The library's API and behaviour tests, one binary (one link instead of one per
+//! file): the camera, the sphere tests, rendering into every colour format, clipping,
+//! bands, scale, culling, the scene features, and a frame drawn into the desktop
+//! simulator's headless display. The tests against the f64 reference live in the lab.
+
+mod band;
+mod camera;
+mod clip;
+mod common;
+mod intersect;
+mod lit;
+mod render;
+mod scale;
+mod simulator;
+mod speed;

@@ -28,7 +28,7 @@ pub(crate) trait Visit {
 /// `with_method(CONST)`, and every single-ray query, whose stepping is fixed) only that
 /// method's monomorphised code is linked; without it the `match` keeps every
 /// combination alive (83 KB of `.text` instead of 20 KB, measured on
-/// `examples/no_panic.rs`).
+/// `lab/firmware/examples/no_panic.rs`).
 #[inline(always)]
 pub(crate) fn dispatch<V: Visit>(method: Method, v: V) -> V::Output {
     #[inline(always)]

@@ -7,6 +7,7 @@ pub use crate::method::ParseMethodError;
 
 /// A camera parameter, as named by [`CameraError`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum CameraParam {
     /// The eye (camera position).
     Eye,
@@ -37,6 +38,7 @@ impl CameraParam {
 
 /// Why a [`Camera`](crate::Camera) could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum CameraError {
     /// A parameter is NaN or infinite.
     NotFinite(CameraParam),
@@ -106,6 +108,7 @@ impl core::error::Error for CameraError {}
 
 /// Why a [`Sphere`](crate::Sphere) is invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum SphereError {
     /// The centre or radius is NaN or infinite.
     NotFinite,
@@ -127,6 +130,7 @@ impl fmt::Display for SphereError {
 
 /// Why a [`Material`](crate::Material) is invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum MaterialError {
     /// `specular` is not in `[0, 1]`.
     Specular,
@@ -162,6 +166,7 @@ impl core::error::Error for MaterialError {}
 
 /// Why a [`Light`](crate::Light) is invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum LightError {
     /// The direction or position is NaN or infinite.
     NotFinite,
@@ -197,6 +202,7 @@ impl core::error::Error for LightError {}
 
 /// Why a [`Plane`](crate::Plane) is invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum PlaneError {
     /// The point or normal is NaN or infinite.
     NotFinite,
@@ -236,6 +242,7 @@ impl core::error::Error for PlaneError {}
 
 /// Why a scene's [`Settings`](crate::Settings) are invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum SettingsError {
     /// `ambient` is not in `[0, 1]`.
     Ambient,
@@ -272,6 +279,7 @@ impl core::error::Error for SphereError {}
 
 /// Why an object or setting could not be added to a [`Scene`](crate::Scene).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum SceneError {
     /// The scene already holds its capacity `N` of spheres.
     Full {
@@ -327,6 +335,7 @@ impl core::error::Error for SceneError {}
 
 /// Why [`Render::draw_band`](crate::Render::draw_band) refused a band.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum BandError {
     /// The rows are empty or reach past the image.
     Rows {
@@ -366,6 +375,7 @@ impl core::error::Error for BandError {}
 /// Why [`Render::draw_integer`](crate::Render::draw_integer) did not draw the frame, or
 /// [`Render::draw_band_integer`](crate::Render::draw_band_integer) the band.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum IntegerError<E> {
     /// The integer kernel does not take this frame: its per-frame rule (see
     /// [`Arithmetic::Integer`](crate::Arithmetic::Integer)) does not hold for the scene

@@ -21,7 +21,7 @@
 //! and it is not tested; a ray leaving a sphere's inner surface meets it once more, at
 //! `s = 2·(C − p)·r/(r·r)`, computed directly (no root near 0 to misjudge). The
 //! textbook [`SecondaryOrigin::Epsilon`] starts the ray at `s = ε` and tests every
-//! object: it is kept to show where it fails (`tests/lit_stability.rs`).
+//! object: it is kept to show where it fails (`lab/tests/lab/lit_stability.rs`).
 
 use core::cell::Cell;
 
@@ -52,6 +52,7 @@ use crate::vec3::Vec3;
 /// once per frame, like the [`Method`](crate::Method)); only scenes with lights or
 /// mirrors use it.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum SecondaryOrigin {
     /// No epsilon (default): the surface the ray leaves is not tested where convexity
     /// proves it cannot be met (leaving a plane, or a sphere's outside), and is met at
@@ -1221,7 +1222,7 @@ fn plane_span<T: TestStrategy, const N: usize, const L: usize>(
 /// The ball is enlarged by `2⁻⁸` of the lengths involved (far beyond the `f32`
 /// rounding of the hit point and of the shadow test, ≈ 2⁻²² of them), and the
 /// silhouette by the quadratic tests' margin and the stepping's error bound, as a
-/// sphere's is: culling changes no pixel (`tests/lit.rs` compares with the unculled
+/// sphere's is: culling changes no pixel (`tests/api/lit.rs` compares with the unculled
 /// loop).
 fn shadow_silhouette(
     light: &FrameLight,

@@ -16,7 +16,7 @@
 //! Cortex-M4F's FPU computes the same correctly rounded result in 14 cycles. Both are
 //! IEEE-754 `squareRoot` in round-to-nearest, so the results are bit-identical (checked
 //! against `libm::sqrtf` over millions of inputs by this module's tests on the host and
-//! by `examples/qemu_cortex_m4.rs` on the FPU).
+//! by `lab/firmware/examples/qemu_cortex_m4.rs` on the FPU).
 //!
 //! The two tolerances every error bound of the crate is stated in live here too:
 //! [`UNIT_ROUNDOFF`] and [`EDGE_TOLERANCE`].
@@ -131,7 +131,7 @@ pub(crate) fn min(a: f32, b: f32) -> f32 {
 /// Why not libm's `tanf`: its general argument reduction (`rem_pio2_large`) and the
 /// soft-float `f64` it computes in cost 10.8 KB of flash on a Cortex-M4F — two thirds
 /// of the whole render path (measured with `llvm-size`/`llvm-nm` on
-/// `examples/no_panic.rs`). A field of view needs no reduction: on `[0, π/4]`,
+/// `lab/firmware/examples/no_panic.rs`). A field of view needs no reduction: on `[0, π/4]`,
 /// `tan x = sin x / cos x` from Taylor polynomials (degree 9 and 10; truncation below
 /// 3e-9 relative), and on `(π/4, π/2)`, `tan x = cos y / sin y` with `y = π/2 − x`
 /// formed exactly (Sterbenz) from a two-part `π/2`, so the result stays accurate as

@@ -20,6 +20,7 @@ use core::str::FromStr;
 /// assert_eq!(e.to_string(), "unknown sqrt: expected one of exact, fast");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ParseMethodError {
     /// What was being parsed (`stepping`, `sphere test`, `sqrt`).
     pub what: &'static str,
@@ -53,6 +54,7 @@ macro_rules! axis {
     ) => {
         $(#[$meta])*
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        #[cfg_attr(feature = "defmt", derive(defmt::Format))]
         pub enum $ty {
             $( $(#[$vmeta])* $variant, )+
         }
@@ -211,6 +213,7 @@ pub const FPU_LESS: bool = cfg!(any(
 /// assert_eq!(Method::ALL.len(), 30);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Method {
     /// Ray stepping.
     pub stepping: Stepping,

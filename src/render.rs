@@ -43,7 +43,7 @@ use crate::vec3::Vec3;
 pub struct Options {
     /// Span culling (default on): a sphere is tested only in the columns of each row
     /// that its silhouette, enlarged by the test's and the stepping's proven rounding
-    /// margins, can reach. Proven to change no pixel (`tests/speed.rs`, bit for bit
+    /// margins, can reach. Proven to change no pixel (`tests/api/speed.rs`, bit for bit
     /// against the unculled render). Off, every sphere is tested at every pixel — the
     /// seed's algorithm taken literally, the benchmarks' baseline.
     pub span_culling: bool,

@@ -36,7 +36,7 @@
 //! the enlarged one but is not inside the shrunk one are its edge columns. So every
 //! pixel whose samples may see two different things (a sphere and the background, or
 //! two spheres: between spheres that do not touch the one in front never changes) is
-//! an edge pixel, however small the sphere; `tests/sampling.rs` checks it sample by
+//! an edge pixel, however small the sphere; `lab/tests/lab/sampling.rs` checks it sample by
 //! sample. Edge columns hidden by a sphere in front that all the samples hit are
 //! dropped. A second ring per sphere marks pixels where the centre's Lab #1 shade is
 //! not a fair stand-in for the mean (the `0.3` floor's kink, and steep shading on small
@@ -96,6 +96,7 @@ include!(concat!(env!("OUT_DIR"), "/srgb_tables.rs"));
 
 /// Rays per pixel; see the [module docs](self).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Sampling {
     /// One ray through the pixel centre.
     #[default]
@@ -108,6 +109,7 @@ pub enum Sampling {
 
 /// The `n` of an `n × n` grid: 2, 3 or 4 (checked by [`SubSamples::new`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SubSamples(u8);
 
 impl SubSamples {
@@ -170,6 +172,7 @@ impl Sampling {
 
 /// Why a sampling choice was refused.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum SamplingError {
     /// The grid is `n × n` with `n` = 2…4; this `n` is outside.
     SubSamples(u32),
@@ -837,7 +840,7 @@ fn span_bands<const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
 /// relative `c/(2|L|²) ≥ 2⁻¹⁰` (the slides' algebraic form), and the geometric test
 /// stops at `L·d < 0`. The premise that the directions keep `d·w > 0` is the
 /// stepping's error bound (below 10⁻² for any silhouette to be built at all). The
-/// tests in `tests/sampling.rs` place spheres just past the margin, and one crossing
+/// tests in `lab/tests/lab/sampling.rs` place spheres just past the margin, and one crossing
 /// the eye's plane (not left out).
 #[inline]
 fn behind_the_eye(g: &crate::intersect::SphereGeom, w: crate::vec3::Vec3) -> bool {

@@ -116,7 +116,7 @@ impl Sphere {
     ///
     /// **Fails** for a sphere far away relative to its size: `b²` and `4ac` are both
     /// ≈ `4a|L|²` and their difference `4a(r² − dist²)` cancels catastrophically.
-    /// Measured by the accuracy lab (`tests/stability.rs`): no error up to
+    /// Measured by the accuracy lab (`lab/tests/lab/stability.rs`): no error up to
     /// distance/radius 100, edge pixels flip from 178, half the disc is wrong at 3162,
     /// and from 17783 the f32 rounding of `|L|²` swamps `r²` and every ray is a hit. `−b − √disc` also cancels
     /// for the near root when the eye is close to the surface.

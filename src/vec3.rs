@@ -16,6 +16,7 @@ use core::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 /// assert_eq!((x + y).dot(x), 1.0);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Vec3 {
     /// x component.
     pub x: f32,

@@ -1,7 +1,7 @@
 //! Prints the README's accuracy tables: every method on every standard scene against
 //! the f64 reference (the feature scenes also per secondary-ray origin), and the
-//! failure points the stability sweeps find (`tests/stability.rs` and
-//! `tests/lit_stability.rs` assert them).
+//! failure points the stability sweeps find (`lab/tests/lab/stability.rs` and
+//! `lab/tests/lab/lit_stability.rs` assert them).
 //!
 //! ```text
 //! cargo run --release --example accuracy_table
@@ -135,7 +135,7 @@ fn lit_sweep_table(out: &mut String, label: &str, points: &[LitPoint], header: f
 fn secondary_failure_points(out: &mut String) -> Result<(), scene_file::SceneFileError> {
     let f = scene_file::load::<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>(standard::path("shadows"))?;
     out.push_str(
-        "\n### Failure points of the secondary-ray origin (`tests/lit_stability.rs` asserts them)\n\n",
+        "\n### Failure points of the secondary-ray origin (`lab/tests/lab/lit_stability.rs` asserts them)\n\n",
     );
     out.push_str(
         "Pixels more than 2 levels off the f64 reference outside the undecidable band, default \
@@ -215,12 +215,12 @@ fn secondary_failure_points(out: &mut String) -> Result<(), scene_file::SceneFil
 }
 
 /// Where the integer kernel's per-frame rule gives way to f32
-/// (`reference::sweeps::integer_sweep`, asserted by `tests/integer.rs`).
+/// (`reference::sweeps::integer_sweep`, asserted by `lab/tests/lab/integer.rs`).
 fn integer_table(out: &mut String) {
     out.push_str("\n### Where the integer kernel gives way to f32\n\n");
     out.push_str(
         "`integer/direct/auto/exact` (the default on chips without an FPU) over the sweeps of \
-         `tests/integer.rs`: the last value its per-frame rule takes and the first it gives \
+         `lab/tests/lab/integer.rs`: the last value its per-frame rule takes and the first it gives \
          to the f32 method; where taken, coverage errors and the largest shade difference \
          against the f64 reference. Resolution never limits it (taken up to 8192×8192).\n\n",
     );
@@ -295,7 +295,7 @@ fn scenes_table(out: &mut String) -> Result<(), scene_file::SceneFileError> {
 fn failure_points(out: &mut String) {
     let methods = sweeps::sphere_methods();
 
-    out.push_str("### Failure points (`tests/stability.rs` asserts them)\n\n");
+    out.push_str("### Failure points (`lab/tests/lab/stability.rs` asserts them)\n\n");
     out.push_str(
         "**Distance/radius** — a unit sphere at distance 10 … 1e5 (17 steps of 10^¼), \
          64×64, half the image wide until the narrowest field of view stops the zoom \

@@ -1,6 +1,6 @@
 //! Estimated Cortex-M4 cycles of marked regions of a firmware run, from QEMU's
 //! execution log and the ARM Technical Reference Manual's instruction timings (the
-//! model and every assumption: `examples/common/cycle_model.rs`).
+//! model and every assumption: `lab/src/cycle_model.rs`).
 //!
 //! ```text
 //! cycle_model run --disasm DISASM --trace TRACE|- --labels FIRMWARE-OUTPUT [--profile FILE]
@@ -16,7 +16,7 @@
 //! so every block runs to its end). `.ci/cycles --quick` checks that both give the same
 //! estimates. Regions lie between calls of `cycle_region_begin` and `cycle_region_end`;
 //! the k-th is labelled by the k-th `region LABEL…` line of the firmware's output.
-//! Prints one line per region (keys: `examples/common/cycle_model.rs`'s `Counts`):
+//! Prints one line per region (keys: `lab/src/cycle_model.rs`'s `Counts`):
 //!
 //! ```text
 //! estimate LABEL… instr N cycles C refills R ldst C1 branch C2 divsqrt C3 fp C4 int C5 cond_extra X it_fold Y store_buffer Z divides D fetch_bytes B code_bytes F code_lines L
@@ -34,7 +34,7 @@
 //! know, an address outside the disassembly, or a region count that differs from the
 //! labels'.
 //!
-//! `table` formats a file of such lines (default `tests/data/cycles_cortex_m4.txt`) as
+//! `table` formats a file of such lines (default `lab/data/cycles_cortex_m4.txt`) as
 //! the README's Markdown: cycles per pixel beside instructions per pixel, the default
 //! method's breakdown on `lab`, and the default's cycles on the scenes with lights, a
 //! floor and mirrors with the frame rates they imply beside an ST7789 at 42 MHz; with `--qemu`, the trace's instruction counts
@@ -398,7 +398,7 @@ fn table(args: &[String]) -> Result<(), ModelError> {
     if let Some(band) = find("lab-band", &default) {
         println!(
             "The default on `lab` traced into a band buffer instead (`Render::draw_band` into `Rgb888` bands, \
-             no `DrawTarget`, no hash: `lab-band` in `examples/qemu_cycles.rs`): {:.1} estimated cycles per \
+             no `DrawTarget`, no hash: `lab-band` in `lab/firmware/examples/qemu_cycles.rs`): {:.1} estimated cycles per \
              pixel ({:.1} instructions), {:.1} frames/s at 168 MHz.",
             band.per_pixel("cycles"),
             band.per_pixel("instr"),

@@ -12,7 +12,7 @@
 //! difference among the pixels that hit the same sphere as the reference, or both miss).
 //! Also the growth curve: ns/pixel against the number of spheres (the first 1 … 64 of
 //! the `crowd` scene), and the same errors on `lab` against the **estimated Cortex-M4
-//! cycles per pixel** of `tests/data/cycles_cortex_m4.txt` (240×240, from `.ci/cycles
+//! cycles per pixel** of `lab/data/cycles_cortex_m4.txt` (240×240, from `.ci/cycles
 //! --update`; a model, see the README) instead of the host's time.
 //!
 //! And the **sampling axis** (two panels at the bottom right, a section of the md and

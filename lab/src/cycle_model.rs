@@ -3,8 +3,8 @@
 //! Cortex-M4 Technical Reference Manual (DDI 0439B), with taken branches found from the
 //! next executed address and load/store pipelining from the previous instruction.
 //!
-//! Shared, through `#[path]`, by `examples/cycle_model.rs` (the command-line tool that
-//! streams QEMU's `-d exec` log through it) and `tests/cycle_model.rs` (the model on
+//! Shared, through `#[path]`, by `lab/examples/cycle_model.rs` (the command-line tool that
+//! streams QEMU's `-d exec` log through it) and `lab/tests/lab/cycle_model.rs` (the model on
 //! hand-written instruction sequences).
 //!
 //! Assumptions (the README's "Cycles, estimated" states them for readers):
@@ -857,7 +857,7 @@ pub fn trace_pc(line: &[u8]) -> Option<u32> {
     Some(pc)
 }
 
-/// One line of the tool's output (and of `tests/data/cycles_cortex_m4.txt`):
+/// One line of the tool's output (and of `lab/data/cycles_cortex_m4.txt`):
 /// `estimate SCENE METHOD … KEY VALUE …`.
 pub struct Estimate<'a> {
     pub words: Vec<&'a str>,

@@ -1,7 +1,7 @@
 //! Parser for the output of the QEMU firmware examples (`qemu_cortex_m4`,
-//! `qemu_cortex_m0`, `qemu_rv32`; the line format is `examples/common/measure.rs`'s).
-//! Shared, through `#[path]`, by `tests/firmware_hashes.rs` (which compares the hashes
-//! with the host's) and `examples/firmware_table.rs` (which formats the README's
+//! `qemu_cortex_m0`, `qemu_rv32`; the line format is `lab/firmware/examples/common/measure.rs`'s).
+//! Shared, through `#[path]`, by `lab/tests/lab/firmware_hashes.rs` (which compares the hashes
+//! with the host's) and `lab/examples/firmware_table.rs` (which formats the README's
 //! tables).
 
 #![allow(dead_code)]

@@ -1,7 +1,7 @@
 //! The standard scenes (`scenes/*.toml`) as `static`s for firmware, which has no file
 //! system: the five Lab #1 scenes ([`for_each`]) and the two with lights, a floor and
 //! mirrors ([`for_each_feature`]), each in the scene type of its exact capacities. The
-//! numbers are copied from the TOML files; `tests/firmware_scenes.rs` loads every file
+//! numbers are copied from the TOML files; `lab/tests/lab/firmware_scenes.rs` loads every file
 //! and fails if any number here differs, so the two cannot diverge.
 //!
 //! Included with `#[path]` by the firmware examples and the host tests.
@@ -280,7 +280,7 @@ pub trait EachScene {
 }
 
 /// Calls `work` on every standard scene, in the order of every table (the order of
-/// `examples/common/standard.rs`' `SCENES`).
+/// `lab/src/standard.rs`' `SCENES`).
 pub fn for_each(work: &mut impl EachScene) {
     work.scene("lab", &LAB, LAB_CAMERA);
     work.scene("far", &FAR, FAR_CAMERA);
@@ -290,7 +290,7 @@ pub fn for_each(work: &mut impl EachScene) {
 }
 
 /// Calls `work` on every standard scene with lights, a floor and mirrors, in the order
-/// of every table (`examples/common/standard.rs`' `FEATURE_SCENES`).
+/// of every table (`lab/src/standard.rs`' `FEATURE_SCENES`).
 pub fn for_each_feature(work: &mut impl EachScene) {
     work.scene("shadows", &SHADOWS, SHADOWS_CAMERA);
     work.scene("mirrors", &MIRRORS, MIRRORS_CAMERA);

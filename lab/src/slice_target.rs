@@ -1,5 +1,5 @@
 //! A plain slice-backed Rgb565 frame buffer: what a firmware's DMA buffer looks like.
-//! Shared by `benches/render.rs` and `examples/speed_vs_accuracy.rs` (included with
+//! Shared by `lab/benches/render.rs` and `lab/examples/speed_vs_accuracy.rs` (included with
 //! `#[path]`), so both time the render into the same target.
 
 use std::convert::Infallible;

@@ -2,7 +2,7 @@
 //! every table and chart), the capacities the host loads scene files with, and loading
 //! a standard scene by name.
 //!
-//! Included with `#[path]` by the host examples, `tests/common/mod.rs` and the benches.
+//! Included with `#[path]` by the host examples, `tests/api/common.rs` and the benches.
 
 #![allow(dead_code)]
 

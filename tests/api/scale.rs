@@ -2,7 +2,7 @@
 //! (centres, radii, the eye and the look-at point) draws the same picture — the same
 //! sphere and colour at every pixel, `t` scaled by the same power of two — with every
 //! camera-relative method. (World-space stepping is the slides' drift by design: its
-//! error grows with `|eye|`, see `tests/stability.rs`.)
+//! error grows with `|eye|`, see `lab/tests/lab/stability.rs`.)
 
 use crate::common;
 

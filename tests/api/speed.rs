@@ -358,7 +358,7 @@ fn default_method_matches_robust_within_one_level() {
 
 /// A clipped draw (the image placed partly off the target) gives exactly the pixels of
 /// the full render where they are visible, with culling and forward differences
-/// (`tests/clip.rs` does this for every method on random scenes).
+/// (`tests/api/clip.rs` does this for every method on random scenes).
 #[test]
 fn clipped_draw_matches_the_full_render() {
     use embedded_graphics::mock_display::MockDisplay;

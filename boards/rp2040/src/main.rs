@@ -38,8 +38,8 @@
 //! numbers), so they trace the same frame without exchanging cameras.
 //!
 //! The bands are traced straight into the ST7789's wire format
-//! (`examples/common/st7789_band.rs`: Rgb565, high byte first), as in
-//! `examples/stm32f407_st7789_dma.rs`.
+//! (`boards/stm32f407/src/st7789_band.rs`: Rgb565, high byte first), as in
+//! `boards/stm32f407/src/main.rs`.
 #![no_std]
 #![no_main]
 
@@ -143,7 +143,7 @@ fn camera_at(angle: f32) -> Option<Camera> {
 
 /// Traces `rows` of the lab scene seen by `camera` into `buf` with the integer kernel
 /// alone (`Render::draw_band_integer`: no `f32` render is linked; its rule takes every
-/// frame of the orbit, `tests/rp2040_split.rs`). Without a camera or if the band is
+/// frame of the orbit, `lab/tests/lab/rp2040_split.rs`). Without a camera or if the band is
 /// refused, the band is black: the frame still goes out whole, so the display's write
 /// pointer stays in step.
 fn trace(camera: Option<&Camera>, rows: Range<u32>, buf: &mut [WireRgb565]) {

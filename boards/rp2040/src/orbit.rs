@@ -3,7 +3,7 @@
 //! (`Render::draw_band_integer`).
 //!
 //! Shared with `#[path]` by the firmware (`boards/rp2040/src/main.rs`) and the host test
-//! `tests/rp2040_split.rs`, which checks that the kernel's per-frame rule takes every
+//! `lab/tests/lab/rp2040_split.rs`, which checks that the kernel's per-frame rule takes every
 //! frame of the orbit, the whole cycle of `f32` angles from 0 back to 0 (so no band of
 //! it is refused and left black).
 

@@ -5,7 +5,7 @@
 //! bands in the order that core traces them.
 //!
 //! Shared with `#[path]` by the firmware (`boards/rp2040/src/main.rs`) and the host
-//! test `tests/rp2040_split.rs`, which proves that both cores' bands, sent in index
+//! test `lab/tests/lab/rp2040_split.rs`, which proves that both cores' bands, sent in index
 //! order, are the whole render's pixels.
 
 use core::ops::Range;

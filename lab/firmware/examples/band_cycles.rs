@@ -1,8 +1,8 @@
-//! The band path of `examples/stm32f407_st7789_dma.rs` for the cycle model
+//! The band path of `boards/stm32f407/src/main.rs` for the cycle model
 //! (`bash .ci/cycles --bands`): the lab scene at 240×240 through the lab camera, default
 //! method, traced band by band (16 rows) into the ST7789 wire format with the DMA
 //! example's own code (`boards/stm32f407/src/st7789_band.rs`), each band between the region
-//! markers of `examples/common/cycle_region.rs`; then band 0 again with the frame-time
+//! markers of `lab/firmware/examples/common/cycle_region.rs`; then band 0 again with the frame-time
 //! label drawn over it (the DMA example's step 4). Prints, after each region, the line
 //! that labels it:
 //!

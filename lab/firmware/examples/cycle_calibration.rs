@@ -1,5 +1,5 @@
 //! The cycle model's self-test: loops of known cost, in assembly, each between the
-//! region markers of `examples/common/cycle_region.rs`.
+//! region markers of `lab/firmware/examples/common/cycle_region.rs`.
 //!
 //! ```sh
 //! bash .ci/cycles --quick    # builds this, traces it in QEMU, checks every loop

@@ -12,7 +12,7 @@
 //! integer row loop (what `fixed::draw_rows` calls besides the per-row `activate`), and
 //! it prints the flash of the integer kernel's own functions. Run in QEMU it prints
 //! `no_panic_integer hash 0x…`, the `lab integer/direct/auto/exact` line of
-//! `tests/data/qemu_cortex_m0.txt`.
+//! `lab/data/qemu_cortex_m0.txt`.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 #[cfg(target_os = "none")]

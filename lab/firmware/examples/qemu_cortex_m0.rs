@@ -5,8 +5,8 @@
 //! cargo run --release --example qemu_cortex_m0 --target thumbv6m-none-eabi
 //! ```
 //!
-//! The same measurement as `qemu_cortex_m4` (`examples/common/measure.rs` on the
-//! SysTick platform of `examples/common/cortex_m.rs`): every standard scene at 240×240
+//! The same measurement as `qemu_cortex_m4` (`lab/firmware/examples/common/measure.rs` on the
+//! SysTick platform of `lab/firmware/examples/common/cortex_m.rs`): every standard scene at 240×240
 //! with every method of `Method::ALL` into a `PixelHash`, one `hash` line each with the
 //! instructions and the stack of the render, the `PixelHash` sink's own cost on its
 //! `sink` line. Every `f32` operation here is a call into compiler-builtins' soft

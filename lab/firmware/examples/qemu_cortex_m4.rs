@@ -4,9 +4,9 @@
 //! cargo run --release --example qemu_cortex_m4 --target thumbv7em-none-eabihf
 //! ```
 //!
-//! The measurement is `examples/common/measure.rs` (shared with `qemu_cortex_m0` and
-//! `qemu_rv32`) on the SysTick platform of `examples/common/cortex_m.rs`. It renders
-//! every standard scene (`examples/common/scenes.rs`, the numbers of
+//! The measurement is `lab/firmware/examples/common/measure.rs` (shared with `qemu_cortex_m0` and
+//! `qemu_rv32`) on the SysTick platform of `lab/firmware/examples/common/cortex_m.rs`. It renders
+//! every standard scene (`lab/src/scenes.rs`, the numbers of
 //! `scenes/*.toml`) with every method in `Method::ALL` into a [`PixelHash`] — the board
 //! has 128 KiB of RAM and no framebuffer — **at 240×240**: each scene's own camera
 //! (eye, look-at, up, vertical field of view) with its size replaced by 240×240, so the
@@ -14,7 +14,7 @@
 //! a floor and mirrors (`shadows`, `mirrors`) with the renders of
 //! `scenes::FEATURE_RENDERS`: the default method with the default options, the literal
 //! options and the textbook epsilon, and the seed's method with the literal options.
-//! Prints, one line per scene and render, in a format `tests/firmware_hashes.rs` parses:
+//! Prints, one line per scene and render, in a format `lab/tests/lab/firmware_hashes.rs` parses:
 //!
 //! ```text
 //! hash lab incremental/robust/exact 0x0123456789abcdef pixels 57600 instr 3456789 ipp 60.0 stack 312

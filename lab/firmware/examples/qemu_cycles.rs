@@ -1,6 +1,6 @@
 //! The renders whose Cortex-M4 cycles `.ci/cycles` estimates: the same scenes, camera
-//! size, methods and `PixelHash` sink as `examples/qemu_cortex_m4.rs`, each render
-//! between the region markers of `examples/common/cycle_region.rs`, so that
+//! size, methods and `PixelHash` sink as `lab/firmware/examples/qemu_cortex_m4.rs`, each render
+//! between the region markers of `lab/firmware/examples/common/cycle_region.rs`, so that
 //! `cycle_model` (which reads QEMU's execution log) counts exactly the render call.
 //!
 //! ```sh
@@ -29,7 +29,7 @@
 //! ```
 //!
 //! The hashes must equal `qemu_cortex_m4`'s (`.ci/cycles` checks them against
-//! `tests/data/qemu_cortex_m4.txt`): the estimated cycles belong to the same pixels.
+//! `lab/data/qemu_cortex_m4.txt`): the estimated cycles belong to the same pixels.
 //! No SysTick interrupt runs, so no exception lands inside a region.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 

@@ -5,7 +5,7 @@
 //! ```
 //!
 //! The same measurement as `qemu_cortex_m4` and `qemu_cortex_m0`
-//! (`examples/common/measure.rs`) on the platform of `examples/common/rv32.rs`: every
+//! (`lab/firmware/examples/common/measure.rs`) on the platform of `lab/firmware/examples/common/rv32.rs`: every
 //! standard scene at 240×240 with every method of `Method::ALL` into a `PixelHash`, one
 //! `hash` line each with the instructions and the stack of the render, the sink's own
 //! cost on its `sink` line. Every `f32` operation is a call into compiler-builtins'

@@ -1,5 +1,5 @@
 //! Anti-aliasing on a Cortex-M4F, measured in QEMU (`netduinoplus2`) like
-//! `qemu_cortex_m4` (`examples/common/measure.rs`):
+//! `qemu_cortex_m4` (`lab/firmware/examples/common/measure.rs`):
 //!
 //! ```sh
 //! cargo run --release --example qemu_sampling --target thumbv7em-none-eabihf
@@ -8,8 +8,8 @@
 //! `lab` (the Lab #1 loop) and `shadows` (the features path) at 240×240 with
 //! `measure::SAMPLINGS` (`Center`, `Grid(4)`, `Adaptive(4)`, default method), one line
 //! each: `aa SCENE SAMPLING HASH pixels P instr I ipp X stack S`
-//! (`tests/sampling.rs` compares the hashes of the committed run,
-//! `tests/data/qemu_sampling.txt`, with the host's). A firmware of its own: linking the
+//! (`lab/tests/lab/sampling.rs` compares the hashes of the committed run,
+//! `lab/data/qemu_sampling.txt`, with the host's). A firmware of its own: linking the
 //! sampled paths for a scene type changes how the compiler inlines that type's shared
 //! shading functions, so `qemu_cortex_m4`'s figures are measured without them, as a
 //! firmware that does not use anti-aliasing is built.

@@ -1,7 +1,7 @@
 //! Stability sweeps: each moves one parameter toward where the methods break and
-//! measures every method against the `f64` reference. `tests/stability.rs` and (for
-//! the secondary rays of lit scenes) `tests/lit_stability.rs` assert the failure
-//! points they find; `examples/accuracy_table.rs` prints them for the README. Both
+//! measures every method against the `f64` reference. `lab/tests/lab/stability.rs` and (for
+//! the secondary rays of lit scenes) `lab/tests/lab/lit_stability.rs` assert the failure
+//! points they find; `lab/examples/accuracy_table.rs` prints them for the README. Both
 //! call these functions, so the table and the assertions cannot diverge.
 
 use std::vec::Vec;

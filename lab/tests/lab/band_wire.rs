@@ -1,10 +1,10 @@
 //! The DMA example's band path on the firmware sends the pixels the blocking example
-//! draws: every 16-row band that `examples/band_cycles.rs` traced in QEMU (with the DMA
-//! example's own code, `examples/common/st7789_band.rs`) holds, byte for byte, the
+//! draws: every 16-row band that `lab/firmware/examples/band_cycles.rs` traced in QEMU (with the DMA
+//! example's own code, `boards/stm32f407/src/st7789_band.rs`) holds, byte for byte, the
 //! host's whole `Render::draw` of the lab scene at 240×240 in Rgb565, high byte first.
 //! Compared by each band's FNV-1a hash, which the firmware prints.
 //!
-//! The firmware output read is `tests/data/band_cycles.txt` (a committed QEMU run,
+//! The firmware output read is `lab/data/band_cycles.txt` (a committed QEMU run,
 //! stored by `bash .ci/cycles --bands`), or the file named by `BAND_CYCLES_OUTPUT` —
 //! `.ci/cycles --bands` points it at its fresh run.
 
@@ -41,7 +41,7 @@ impl DrawTarget for Framebuffer {
     }
 }
 
-/// FNV-1a (64-bit), as `examples/band_cycles.rs` computes it.
+/// FNV-1a (64-bit), as `lab/firmware/examples/band_cycles.rs` computes it.
 fn fnv(bytes: impl IntoIterator<Item = u8>) -> u64 {
     bytes.into_iter().fold(0xcbf2_9ce4_8422_2325, |hash, byte| {
         (hash ^ u64::from(byte)).wrapping_mul(0x0000_0100_0000_01b3)

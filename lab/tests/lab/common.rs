@@ -1,4 +1,4 @@
-//! What the integration tests share: the standard scenes (`examples/common/standard.rs`)
+//! What the integration tests share: the standard scenes (`lab/src/standard.rs`)
 //! and tracing a render into comparable pixels.
 
 #![allow(dead_code)]

@@ -1,7 +1,7 @@
-//! The Cortex-M4 cycle model (`examples/common/cycle_model.rs`) on hand-written
+//! The Cortex-M4 cycle model (`lab/src/cycle_model.rs`) on hand-written
 //! disassembly and address sequences: decoding of the mnemonics the compiler emits,
 //! taken-branch detection, load pipelining, regions. The same model is checked end to
-//! end on real loops in QEMU by `examples/cycle_calibration.rs` (`.ci/cycles`).
+//! end on real loops in QEMU by `lab/firmware/examples/cycle_calibration.rs` (`.ci/cycles`).
 
 use embedded_raytracer_lab::cycle_model;
 

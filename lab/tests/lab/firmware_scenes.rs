@@ -1,4 +1,4 @@
-//! The firmware's compiled-in scenes (`examples/common/scenes.rs`) are exactly the
+//! The firmware's compiled-in scenes (`lab/src/scenes.rs`) are exactly the
 //! standard scene files: every number, bit for bit, and each scene type's capacities
 //! exactly what its file holds.
 

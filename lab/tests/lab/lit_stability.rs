@@ -4,7 +4,7 @@
 //! epsilon) and the textbook `ε = 10⁻³`. Errors are `Metrics::over_2` (pixels more
 //! than 2 levels off, the reference's undecidable band excluded), told apart into shadow
 //! acne and light leaks (`sweeps::LitErrors`). Each sweep is the code
-//! `examples/accuracy_table.rs` prints into the README; the figures in the comments
+//! `lab/examples/accuracy_table.rs` prints into the README; the figures in the comments
 //! were measured with `cargo test --release --test lit_stability -- --ignored
 //! --nocapture` and `cargo run --release --example accuracy_table`.
 //!

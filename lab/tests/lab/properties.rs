@@ -35,7 +35,7 @@ fn config(cases: u32) -> Config {
 /// of a silhouette (or the two nearest spheres are within this relative depth).
 ///
 /// Why 1e-5: `Incremental` stepping accumulates up to ~0.5 px of drift at 8192 px
-/// (a few 1e-6 rad at the image sizes here, see `tests/stability.rs`), and the f32
+/// (a few 1e-6 rad at the image sizes here, see `lab/tests/lab/stability.rs`), and the f32
 /// ray, basis and hit distance add a few 1e-7; 1e-5 covers both with a margin. It
 /// is 1/100 of a pixel at 1000 px across a 60° field of view.
 const SILHOUETTE_TOLERANCE: f64 = 1e-5;

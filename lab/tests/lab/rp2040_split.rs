@@ -21,7 +21,7 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_raytracer::{Arithmetic, Camera, Method, Render, Scene};
 
-/// The firmware's panel (`examples/common/st7789_band.rs`: `WIDTH`, `HEIGHT`); its band
+/// The firmware's panel (`boards/stm32f407/src/st7789_band.rs`: `WIDTH`, `HEIGHT`); its band
 /// height is `split::BAND_ROWS`.
 const FIRMWARE_SIZE: Size = Size::new(240, 240);
 
@@ -137,7 +137,7 @@ fn firmware_bands_equal_the_whole_render_on_every_standard_scene_and_method() {
             );
         }
         // The firmware's method on the Pico (the integer kernel, the default without an
-        // FPU) and pixel format: Rgb565 (sent high byte first: tests/band_wire.rs).
+        // FPU) and pixel format: Rgb565 (sent high byte first: lab/tests/lab/band_wire.rs).
         let want = whole(&file.scene, &camera, Method::INTEGER);
         let rgb565 = Render::<_, Rgb565>::new(&file.scene, &camera).with_method(Method::INTEGER);
         let got = two_core_frame(&rgb565, FIRMWARE_SIZE, split::BAND_ROWS);

@@ -376,7 +376,7 @@ fn sampling_choices_parse_display_and_refuse() {
 }
 
 /// The QEMU Cortex-M4F run's anti-aliasing renders (`aa SCENE SAMPLING HASH …` lines
-/// of `tests/data/qemu_sampling.txt`, made by `cargo run --release --example
+/// of `lab/data/qemu_sampling.txt`, made by `cargo run --release --example
 /// qemu_sampling --target thumbv7em-none-eabihf`): the host draws the same pixels at
 /// 240×240 into the same `PixelHash`.
 #[test]

@@ -1,4 +1,4 @@
-//! Region markers for the cycle model (`examples/cycle_model.rs`): a firmware calls
+//! Region markers for the cycle model (`lab/examples/cycle_model.rs`): a firmware calls
 //! [`cycle_region_begin`] right before and [`cycle_region_end`] right after the code
 //! whose cycles are estimated. The tool finds them by these symbol names in the ELF's
 //! disassembly and counts the instructions executed after the begin marker returns, up

@@ -2,7 +2,7 @@
 //! `qemu_rv32`): a platform supplies an instruction counter, a stack painter and an
 //! output channel ([`Platform`]); this module renders every standard Lab #1 scene with
 //! every method of `Method::ALL` (and, on chips without an FPU, `Method::INTEGER`) into
-//! a [`PixelHash`] at 240×240 and prints one line per scene and method in the format `examples/common/qemu_output.rs` parses:
+//! a [`PixelHash`] at 240×240 and prints one line per scene and method in the format `lab/src/qemu_output.rs` parses:
 //!
 //! ```text
 //! hash lab incremental/robust/exact 0x0123456789abcdef pixels 57600 instr 3456789 ipp 60.0 stack 312
@@ -21,7 +21,7 @@
 //!   render with the counter's interrupt (if any) off, so no exception frame lands on
 //!   the stack. Reaching the bottom of the stack region is a failure (an overflow).
 //!
-//! Included with `#[path]`; `crate::scenes` must be `examples/common/scenes.rs`.
+//! Included with `#[path]`; `crate::scenes` must be `lab/src/scenes.rs`.
 
 #![allow(dead_code)]
 
@@ -483,7 +483,7 @@ impl<P: Platform> Run<P> {
 
     /// [`SAMPLINGS`] on one scene (default method), measured as
     /// [`Run::measure_scene`] measures: `aa NAME SAMPLING HASH pixels P instr I ipp X
-    /// stack S` (`tests/sampling.rs` checks the hashes against the host's).
+    /// stack S` (`lab/tests/lab/sampling.rs` checks the hashes against the host's).
     pub fn measure_sampling<const N: usize, const L: usize, const PL: usize, const D: usize>(
         &mut self,
         name: &str,
@@ -527,7 +527,7 @@ impl<P: Platform> Run<P> {
         scenes::for_each_feature(&mut Sampled(self));
     }
 
-    /// Every standard Lab #1 scene (`examples/common/scenes.rs`' `for_each`), every
+    /// Every standard Lab #1 scene (`lab/src/scenes.rs`' `for_each`), every
     /// method.
     pub fn every_scene(&mut self) {
         scenes::for_each(&mut Lab1(self));

@@ -13,6 +13,8 @@
 //!
 //! Nothing here is part of the library's API; the library never depends on the lab.
 #![cfg_attr(not(feature = "std"), no_std)]
+// `!(x > bound)` is deliberate, as in the library: it rejects NaN along with out-of-range values.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod hash;
 pub mod scenes;

@@ -3,7 +3,6 @@
 
 use core::fmt;
 
-pub use crate::method::ParseMethodError;
 
 /// A camera parameter, as named by [`CameraError`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -76,7 +75,7 @@ impl CameraError {
 
 impl fmt::Display for CameraError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        use crate::limits::{MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
+        use crate::math::limits::{MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
         match self {
             CameraError::NotFinite(p) => write!(f, "`{}` is not a finite number", p.file_key()),
             CameraError::EyeAtLookAt => {
@@ -424,3 +423,35 @@ impl From<SettingsError> for SceneError {
         SceneError::Settings(e)
     }
 }
+
+/// A method name (`--stepping`, `--sphere-test`, `--sqrt`) that is not one of the choices.
+///
+/// ```
+/// use embedded_raytracer::{ParseMethodError, Sqrt};
+/// let e = "slow".parse::<Sqrt>().unwrap_err();
+/// assert_eq!(e, ParseMethodError { what: "sqrt", expected: Sqrt::NAMES });
+/// assert_eq!(e.to_string(), "unknown sqrt: expected one of exact, fast");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ParseMethodError {
+    /// What was being parsed (`stepping`, `sphere test`, `sqrt`).
+    pub what: &'static str,
+    /// The accepted names, in the axis' order; `Display` joins them with `, `.
+    pub expected: &'static [&'static str],
+}
+
+impl fmt::Display for ParseMethodError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "unknown {}: expected one of ", self.what)?;
+        for (k, name) in self.expected.iter().enumerate() {
+            if k > 0 {
+                f.write_str(", ")?;
+            }
+            f.write_str(name)?;
+        }
+        Ok(())
+    }
+}
+
+impl core::error::Error for ParseMethodError {}

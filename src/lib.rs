@@ -121,32 +121,25 @@
 #[cfg(host_std)]
 extern crate std;
 
-pub mod camera;
-mod dispatch;
-pub mod dither;
-pub mod error;
-mod fixed;
-mod frame;
-pub mod intersect;
-pub mod light;
-mod limits;
-mod lit;
-pub mod material;
-pub mod math;
-pub mod method;
-pub mod plane;
-pub mod render;
-pub mod sampling;
-mod scanline;
-pub mod scene;
+// The rooms, bottom to top: each imports only those above it in this list.
+pub mod math; // square roots, `Vec3`, the limits every bound is stated in
+pub mod error; // the typed errors of every constructor
+pub mod camera; // the pin-hole camera; each sphere's silhouette on the image (`span`)
+pub mod scene; // the scene and its objects: spheres, planes, lights, materials
+pub mod method; // the method vocabulary, its one dispatch, stepping, sphere tests, single-ray queries
+mod trace; // per frame, per row, per pixel: options, frame constants, scanline loop, shading, features
+pub mod sampling; // anti-aliasing: one ray per pixel, grids, adaptive
+mod integer; // the integer kernel for chips without an FPU
+mod output; // rows into targets (sinks) and the ordered dither
+pub mod render; // `Render`: the public renderer, where the method is matched
 #[cfg(host_std)]
-pub mod scene_file;
-pub mod shade;
-mod sink;
-mod span;
-pub mod sphere;
-mod stepping;
-pub mod vec3;
+pub mod scene_file; // TOML scene files
+
+pub use method::intersect;
+pub use output::dither;
+pub use scene::{light, material, plane, sphere};
+pub use math::vec3;
+pub use trace::shade;
 
 pub use camera::{Camera, CameraParams};
 
@@ -158,13 +151,13 @@ pub use error::{
     BandError, CameraError, CameraParam, IntegerError, LightError, MaterialError, ParseMethodError,
     PlaneError, SceneError, SettingsError, SphereError,
 };
-pub use light::Light;
-pub use lit::SecondaryOrigin;
-pub use material::Material;
+pub use scene::light::Light;
+pub use trace::options::SecondaryOrigin;
+pub use scene::material::Material;
 pub use method::{Arithmetic, Method, SphereTest, Sqrt, Stepping, FPU_LESS};
-pub use plane::Plane;
+pub use scene::plane::Plane;
 pub use render::{Options, Render, Sample};
 pub use sampling::{Sampling, SamplingError, SubSamples};
 pub use scene::{Hit, Scene, Settings, MAX_DEPTH};
-pub use sphere::Sphere;
-pub use vec3::Vec3;
+pub use scene::sphere::Sphere;
+pub use math::vec3::Vec3;

@@ -87,12 +87,12 @@ use serde::Deserialize;
 
 use crate::camera::{Camera, CameraParams};
 use crate::error::{CameraError, LightError, PlaneError, SceneError, SphereError};
-use crate::light::Light;
-use crate::material::Material;
-use crate::plane::Plane;
+use crate::scene::light::Light;
+use crate::scene::material::Material;
+use crate::scene::plane::Plane;
 use crate::scene::{Scene, Settings};
-use crate::sphere::Sphere;
-use crate::vec3::Vec3;
+use crate::scene::sphere::Sphere;
+use crate::math::vec3::Vec3;
 
 /// The largest scene file [`load`] reads, in bytes (1 MiB; `scenes/crowd.toml`, 64
 /// spheres, is 5,351 bytes).

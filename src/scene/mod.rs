@@ -2,20 +2,19 @@
 //! and mirrors — and the closest-hit search for one ray (through the one dispatch,
 //! like the renderer).
 
+pub mod light;
+pub mod material;
+pub mod plane;
+pub mod sphere;
+
 use embedded_graphics::pixelcolor::Rgb888;
 use heapless::Vec;
 
-use crate::dispatch::{dispatch_ray, Visit};
 use crate::error::{SceneError, SettingsError};
-use crate::intersect::{Scale, SphereGeom, TestStrategy};
-use crate::light::Light;
-use crate::material::Material;
-use crate::math::SqrtFn;
-use crate::method::{SphereTest, Sqrt};
-use crate::plane::Plane;
-use crate::sphere::Sphere;
-use crate::stepping::Stepper;
-use crate::vec3::Vec3;
+use crate::scene::light::Light;
+use crate::scene::material::Material;
+use crate::scene::plane::Plane;
+use crate::scene::sphere::Sphere;
 
 /// The largest reflection depth any scene type can ask for (`D ≤ MAX_DEPTH` is what
 /// scene files accept; a larger `D` is clamped to it).
@@ -290,59 +289,4 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Scene<N, L,
         self.background = background;
     }
 
-    /// The closest hit with `t > 0` of the ray `origin + t·dir` over all spheres (planes
-    /// are not searched).
-    ///
-    /// ```
-    /// use embedded_graphics::pixelcolor::Rgb888;
-    /// use embedded_raytracer::{Scene, Sphere, SphereTest, Sqrt, Vec3};
-    ///
-    /// let mut scene: Scene<2> = Scene::new(Rgb888::new(0, 0, 0));
-    /// scene.push(Sphere::new(Vec3::new(0.0, 0.0, -10.0), 1.0, Rgb888::new(255, 0, 0))).unwrap();
-    /// scene.push(Sphere::new(Vec3::new(0.0, 0.0, -5.0), 1.0, Rgb888::new(0, 255, 0))).unwrap();
-    /// let hit = scene.closest_hit(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), SphereTest::Robust, Sqrt::Exact);
-    /// assert_eq!(hit.map(|h| (h.index, h.t)), Some((1, 4.0)));
-    /// ```
-    #[must_use]
-    pub fn closest_hit(&self, origin: Vec3, dir: Vec3, test: SphereTest, sqrt: Sqrt) -> Option<Hit> {
-        struct Query<'s> {
-            spheres: &'s [Sphere],
-            origin: Vec3,
-            dir: Vec3,
-        }
-        impl Visit for Query<'_> {
-            type Output = Option<Hit>;
-            #[inline(always)]
-            fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Option<Hit> {
-                // Closest hit: each test gets the nearest `t` found so far as its
-                // `t_max`, so a farther sphere is rejected by the same comparison that
-                // finds hits. Constants are made per sphere as it is tested (no
-                // per-query buffer on the stack).
-                let a = self.dir.dot(self.dir);
-                let scale = Scale::for_spheres(self.spheres, self.origin);
-                let mut t_max = f32::INFINITY;
-                let mut best = None;
-                for (index, sphere) in self.spheres.iter().enumerate() {
-                    let g = SphereGeom::new(sphere.center, sphere.radius, self.origin, scale);
-                    if let Some(t) = T::ray::<Q>(&g, self.dir, a, t_max) {
-                        t_max = t;
-                        best = Some(Hit { index, t });
-                    }
-                }
-                best.map(|h| Hit {
-                    t: scale.unscale_t(h.t),
-                    ..h
-                })
-            }
-        }
-        dispatch_ray(
-            test,
-            sqrt,
-            Query {
-                spheres: &self.spheres,
-                origin,
-                dir,
-            },
-        )
-    }
 }

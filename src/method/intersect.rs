@@ -16,8 +16,8 @@
 use core::num::NonZeroU32;
 
 use crate::math::{SqrtFn, EDGE_TOLERANCE, UNIT_ROUNDOFF};
-use crate::span::{Extent, Margin};
-use crate::vec3::Vec3;
+use crate::camera::span::{Extent, Margin};
+use crate::math::vec3::Vec3;
 
 /// A sphere's per-frame geometry relative to the ray origin (the eye, for primary
 /// rays). Built once per frame so the per-pixel tests only multiply and add.
@@ -99,7 +99,7 @@ impl Scale {
     #[cold]
     #[inline(never)]
     pub(crate) fn for_spheres<'s>(
-        spheres: impl IntoIterator<Item = &'s crate::sphere::Sphere>,
+        spheres: impl IntoIterator<Item = &'s crate::scene::sphere::Sphere>,
         origin: Vec3,
     ) -> Self {
         let mut m = 0.0f32;

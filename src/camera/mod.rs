@@ -8,13 +8,15 @@
 //! p(i,j) − eye = w + ((i + ½) − W/2)·pw·u + (H/2 − (j + ½))·ph·v
 //! ```
 
+pub(crate) mod span;
+
 use embedded_graphics::geometry::Size;
 
 use crate::error::{CameraError, CameraParam};
 use crate::math;
-use crate::vec3::Vec3;
+use crate::math::vec3::Vec3;
 
-pub use crate::limits::{MAX_FOV, MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
+pub use crate::math::limits::{MAX_FOV, MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
 
 /// What a camera is built from: plain data, `const`-constructible.
 ///

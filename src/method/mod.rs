@@ -8,40 +8,15 @@
 //! type (see `ARCHITECTURE.md`); every list of names in the CLI usage, the simulator's
 //! key help, the tables and the chart is read from `NAMES`/`ALL`.
 
+pub(crate) mod dispatch;
+pub mod intersect;
+mod query;
+pub(crate) mod stepping;
+
 use core::fmt;
 use core::str::FromStr;
 
-/// A method name (`--stepping`, `--sphere-test`, `--sqrt`) that is not one of the choices.
-///
-/// ```
-/// use embedded_raytracer::{ParseMethodError, Sqrt};
-/// let e = "slow".parse::<Sqrt>().unwrap_err();
-/// assert_eq!(e, ParseMethodError { what: "sqrt", expected: Sqrt::NAMES });
-/// assert_eq!(e.to_string(), "unknown sqrt: expected one of exact, fast");
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ParseMethodError {
-    /// What was being parsed (`stepping`, `sphere test`, `sqrt`).
-    pub what: &'static str,
-    /// The accepted names, in the axis' order; `Display` joins them with `, `.
-    pub expected: &'static [&'static str],
-}
-
-impl fmt::Display for ParseMethodError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "unknown {}: expected one of ", self.what)?;
-        for (k, name) in self.expected.iter().enumerate() {
-            if k > 0 {
-                f.write_str(", ")?;
-            }
-            f.write_str(name)?;
-        }
-        Ok(())
-    }
-}
-
-impl core::error::Error for ParseMethodError {}
+pub use crate::error::ParseMethodError;
 
 /// One axis of the method from its table: `Variant => "kebab-name"` rows, each with
 /// its doc comment.
@@ -114,7 +89,7 @@ axis! {
 
 axis! {
     /// Which ray–sphere intersection formula the pixel loop uses (strategy types in
-    /// [`intersect`](crate::intersect)).
+    /// [`intersect`](crate::method::intersect)).
     SphereTest, "sphere test" {
         /// The slides' quadratic (see [`Sphere::intersect_algebraic`](crate::Sphere::intersect_algebraic)).
         Algebraic => "algebraic",
@@ -125,7 +100,7 @@ axis! {
         /// The robust test's discriminant `a·r² − |L × d|²` and `b = L·d`
         /// forward-differenced along each scanline (three additions per sphere and
         /// pixel), re-anchored by direct evaluation at each span start and every
-        /// [`FD_ANCHOR_INTERVAL`](crate::intersect::FD_ANCHOR_INTERVAL) columns. Error
+        /// [`FD_ANCHOR_INTERVAL`](crate::method::intersect::FD_ANCHOR_INTERVAL) columns. Error
         /// bound: a silhouette edge moves by at most `2⁻²⁴·K·(R + 2K)` pixels (`R` the
         /// sphere's radius on screen in pixels, `K` the anchor interval), on top of the
         /// robust test's own error. A single-ray query
@@ -138,7 +113,7 @@ axis! {
         /// The slides' algebraic and geometric tests are never chosen: they are dearer
         /// per pixel than forward differences and fail from distance/radius ≈ 100.
         /// A scene holding more than
-        /// [`AUTO_FD_CAPACITY`](crate::intersect::AUTO_FD_CAPACITY) (32) spheres is
+        /// [`AUTO_FD_CAPACITY`](crate::method::intersect::AUTO_FD_CAPACITY) (32) spheres is
         /// drawn with `Robust` for every sphere, as its render's stack would otherwise
         /// keep the forward differences' constants for each (64 spheres: 6,132 B
         /// instead of 10,256 B on the Cortex-M4F). Single-ray queries behave as

@@ -7,6 +7,7 @@ use core::fmt;
 /// A camera parameter, as named by [`CameraError`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum CameraParam {
     /// The eye (camera position).
     Eye,
@@ -38,6 +39,7 @@ impl CameraParam {
 /// Why a [`Camera`](crate::Camera) could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum CameraError {
     /// A parameter is NaN or infinite.
     NotFinite(CameraParam),
@@ -108,6 +110,7 @@ impl core::error::Error for CameraError {}
 /// Why a [`Sphere`](crate::Sphere) is invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum SphereError {
     /// The centre or radius is NaN or infinite.
     NotFinite,
@@ -130,6 +133,7 @@ impl fmt::Display for SphereError {
 /// Why a [`Material`](crate::Material) is invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum MaterialError {
     /// `specular` is not in `[0, 1]`.
     Specular,
@@ -166,6 +170,7 @@ impl core::error::Error for MaterialError {}
 /// Why a [`Light`](crate::Light) is invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum LightError {
     /// The direction or position is NaN or infinite.
     NotFinite,
@@ -202,6 +207,7 @@ impl core::error::Error for LightError {}
 /// Why a [`Plane`](crate::Plane) is invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum PlaneError {
     /// The point or normal is NaN or infinite.
     NotFinite,
@@ -242,6 +248,7 @@ impl core::error::Error for PlaneError {}
 /// Why a scene's [`Settings`](crate::Settings) are invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum SettingsError {
     /// `ambient` is not in `[0, 1]`.
     Ambient,
@@ -279,6 +286,7 @@ impl core::error::Error for SphereError {}
 /// Why an object or setting could not be added to a [`Scene`](crate::Scene).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum SceneError {
     /// The scene already holds its capacity `N` of spheres.
     Full {
@@ -335,6 +343,7 @@ impl core::error::Error for SceneError {}
 /// Why [`Render::draw_band`](crate::Render::draw_band) refused a band.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum BandError {
     /// The rows are empty or reach past the image.
     Rows {
@@ -375,6 +384,7 @@ impl core::error::Error for BandError {}
 /// [`Render::draw_band_integer`](crate::Render::draw_band_integer) the band.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum IntegerError<E> {
     /// The integer kernel does not take this frame: its per-frame rule (see
     /// [`Arithmetic::Integer`](crate::Arithmetic::Integer)) does not hold for the scene
@@ -429,11 +439,12 @@ impl From<SettingsError> for SceneError {
 /// ```
 /// use embedded_raytracer::{ParseMethodError, Sqrt};
 /// let e = "slow".parse::<Sqrt>().unwrap_err();
-/// assert_eq!(e, ParseMethodError { what: "sqrt", expected: Sqrt::NAMES });
+/// assert_eq!((e.what, e.expected), ("sqrt", Sqrt::NAMES));
 /// assert_eq!(e.to_string(), "unknown sqrt: expected one of exact, fast");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub struct ParseMethodError {
     /// What was being parsed (`stepping`, `sphere test`, `sqrt`).
     pub what: &'static str,

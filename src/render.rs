@@ -73,7 +73,7 @@ impl<'a, const N: usize, C, const L: usize, const P: usize, const D: usize> Rend
         Self {
             scene,
             camera,
-            method: Method::DEFAULT,
+            method: Method::TARGET_DEFAULT,
             options: Options::DEFAULT,
             sampling: Sampling::Center,
             offset: Point::zero(),

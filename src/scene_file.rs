@@ -521,7 +521,7 @@ pub fn parse<const N: usize, const L: usize, const P: usize, const D: usize>(
     if let Some(fov_x) = &c.fov_x_deg {
         params = params.with_fov_x(radians(fov_x.0));
     }
-    let camera = Camera::from_params(params).map_err(|e| SceneFileError::field(camera_field(e, size), e))?;
+    let camera = params.build().map_err(|e| SceneFileError::field(camera_field(e, size), e))?;
 
     let background = raw.background.as_ref().map_or(Rgb888::new(0, 0, 0), rgb);
     let mut scene = Scene::new(background);

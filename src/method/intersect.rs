@@ -356,8 +356,7 @@ pub const FD_ANCHOR_INTERVAL: u32 = 16;
 ///
 /// ```
 /// use embedded_graphics::{pixelcolor::Rgb888, prelude::*};
-/// use embedded_raytracer::intersect::AUTO_FD_CAPACITY;
-/// use embedded_raytracer::{Camera, Method, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3};
+/// use embedded_raytracer::{AUTO_FD_CAPACITY, Camera, Method, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3};
 ///
 /// // A row of small spheres, one more than the limit.
 /// let mut scene: Scene<64> = Scene::new(Rgb888::BLACK);

@@ -30,6 +30,7 @@ macro_rules! axis {
         $(#[$meta])*
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
         #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+        #[non_exhaustive]
         pub enum $ty {
             $( $(#[$vmeta])* $variant, )+
         }
@@ -154,7 +155,7 @@ axis! {
 /// without the hard-float ABI (`thumbv6m-none-eabi`, `thumbv7m-none-eabi`; a Cortex-M4F
 /// built for the soft-float ABI counts too, every `f32` operation being a call there)
 /// and RISC-V without the `F` extension (`riscv32imc-unknown-none-elf`).
-/// [`Method::DEFAULT`] takes the integer kernel there.
+/// [`Method::TARGET_DEFAULT`] takes the integer kernel there.
 pub const FPU_LESS: bool = cfg!(any(
     all(target_arch = "arm", not(target_abi = "eabihf")),
     all(
@@ -189,6 +190,7 @@ pub const FPU_LESS: bool = cfg!(any(
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub struct Method {
     /// Ray stepping.
     pub stepping: Stepping,
@@ -205,20 +207,18 @@ pub struct Method {
 const METHOD_COUNT: usize = Stepping::ALL.len() * SphereTest::ALL.len() * Sqrt::ALL.len();
 
 impl Method {
-    /// The default method (see the type's docs): `direct/auto/exact`, and on a target
-    /// without an FPU ([`FPU_LESS`]) the integer kernel on top of it
-    /// ([`Method::INTEGER`]): measured in QEMU it draws the lab scene in under a third
-    /// of the instructions (Cortex-M0: 359.3 against 1,155.6 per pixel), as exactly
-    /// (README, "On a Cortex-M0 and RV32").
-    pub const DEFAULT: Method = if FPU_LESS {
-        Method::INTEGER
-    } else {
-        Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact)
-    };
+    /// The default on this target, said at the call site: [`Method::F32`] on a target
+    /// with an FPU, [`Method::INTEGER`] on one without ([`FPU_LESS`]), where the
+    /// integer kernel draws the lab scene in under a third of the instructions, as
+    /// exactly (measured in QEMU, Cortex-M0: 359.3 against 1,155.6 per pixel;
+    /// `docs/firmware.md`). `Method::default()` is this.
+    pub const TARGET_DEFAULT: Method = if FPU_LESS { Method::INTEGER } else { Method::F32 };
+
+    /// The default `f32` method (see the type's docs): `direct/auto/exact`.
+    pub const F32: Method = Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact);
 
     /// The integer kernel, `direct/auto/exact` in `f32` where its bounds do not hold.
-    pub const INTEGER: Method =
-        Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact).with_arithmetic(Arithmetic::Integer);
+    pub const INTEGER: Method = Method::F32.with_arithmetic(Arithmetic::Integer);
 
     /// The seed taken literally: world-space stepping, the quadratic, exact root.
     pub const LITERAL: Method = Method::new(Stepping::WorldSpace, SphereTest::Algebraic, Sqrt::Exact);
@@ -249,7 +249,7 @@ impl Method {
     #[allow(clippy::indexing_slicing)]
     pub const ALL: [Method; METHOD_COUNT] = {
         let (nt, nq) = (SphereTest::ALL.len(), Sqrt::ALL.len());
-        let mut all = [Method::DEFAULT; METHOD_COUNT];
+        let mut all = [Method::F32; METHOD_COUNT];
         let mut k = 0;
         while k < METHOD_COUNT {
             all[k] = Method::new(
@@ -265,7 +265,7 @@ impl Method {
 
 impl Default for Method {
     fn default() -> Self {
-        Method::DEFAULT
+        Method::TARGET_DEFAULT
     }
 }
 

@@ -98,6 +98,7 @@ include!(concat!(env!("OUT_DIR"), "/srgb_tables.rs"));
 /// Rays per pixel; see the [module docs](self).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum Sampling {
     /// One ray through the pixel centre.
     #[default]
@@ -174,6 +175,7 @@ impl Sampling {
 /// Why a sampling choice was refused.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum SamplingError {
     /// The grid is `n × n` with `n` = 2…4; this `n` is outside.
     SubSamples(u32),

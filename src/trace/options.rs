@@ -11,49 +11,68 @@ use crate::math::vec3::Vec3;
 use crate::method::intersect::FD_ANCHOR_INTERVAL;
 use crate::scene::Hit;
 
-/// Speed settings of a render besides the [`Method`]. Neither changes what a pixel
-/// means: span culling changes no pixel at all, and the anchor interval moves the
-/// forward-differenced test's pixels only within its stated error bound.
+/// How a render traces besides the [`Method`] and the [`Sampling`](crate::Sampling):
+/// where shadow and reflection rays start ([`SecondaryOrigin`]). Nothing here changes
+/// what a pixel means beyond that choice.
+///
+/// The kernel's speed devices — span culling, any-hit shadow rays, the
+/// forward-differenced test's anchor interval — are always on at their proven settings;
+/// their literal baselines, for measuring them, are behind the `bench-baselines`
+/// feature (`with_span_culling`, `with_shadow_any_hit`, `with_anchor_interval`).
 ///
 /// ```
-/// use embedded_raytracer::{intersect::FD_ANCHOR_INTERVAL, Options};
+/// use embedded_raytracer::{Options, SecondaryOrigin};
 /// let o = Options::DEFAULT;
-/// assert!(o.span_culling);
-/// assert_eq!(o.anchor_interval, FD_ANCHOR_INTERVAL);
+/// assert_eq!(o.secondary, SecondaryOrigin::Convex);
+/// assert_eq!(o.with_secondary(SecondaryOrigin::TEXTBOOK).secondary, SecondaryOrigin::Epsilon(1e-3));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Options {
+    /// Where shadow and reflection rays start (default [`SecondaryOrigin::Convex`]: no
+    /// epsilon). Only scenes with lights or mirrors trace such rays.
+    pub secondary: SecondaryOrigin,
     /// Span culling (default on): a sphere is tested only in the columns of each row
     /// that its silhouette, enlarged by the test's and the stepping's proven rounding
     /// margins, can reach. Proven to change no pixel (`tests/api/speed.rs`, bit for bit
     /// against the unculled render). Off, every sphere is tested at every pixel — the
     /// seed's algorithm taken literally, the benchmarks' baseline.
-    pub span_culling: bool,
+    pub(crate) span_culling: bool,
     /// The anchor interval K of the forward-differenced test (default
-    /// [`FD_ANCHOR_INTERVAL`]; `0` is taken as 1): its differences are re-evaluated
+    /// `FD_ANCHOR_INTERVAL`; `0` is taken as 1): its differences are re-evaluated
     /// directly every K columns. The edge error bound grows with K (see
     /// [`SphereTest::ForwardDiff`](crate::SphereTest::ForwardDiff)); for measuring it.
-    pub anchor_interval: u32,
-    /// Where shadow and reflection rays start (default [`SecondaryOrigin::Convex`]: no
-    /// epsilon). Only scenes with lights or mirrors trace such rays.
-    pub secondary: SecondaryOrigin,
+    pub(crate) anchor_interval: u32,
     /// Shadow rays stop at the first occluder, testing first the one that shadowed the
     /// previous pixel (default on). Off, every object is tested for every shadow ray,
     /// as a closest-hit search would — the benchmarks' literal baseline; no pixel
     /// changes.
-    pub shadow_any_hit: bool,
+    pub(crate) shadow_any_hit: bool,
 }
 
 impl Options {
-    /// Span culling on, anchor interval [`FD_ANCHOR_INTERVAL`].
+    /// Secondary rays from the surface itself ([`SecondaryOrigin::Convex`]), every speed
+    /// device on.
     pub const DEFAULT: Options = Options {
         span_culling: true,
         anchor_interval: FD_ANCHOR_INTERVAL,
         secondary: SecondaryOrigin::Convex,
         shadow_any_hit: true,
     };
+
+    /// The same options with secondary rays starting as `secondary` says.
+    #[must_use]
+    pub const fn with_secondary(mut self, secondary: SecondaryOrigin) -> Self {
+        self.secondary = secondary;
+        self
+    }
 }
 
+/// The literal baselines, for measuring the speed devices against them (feature
+/// `bench-baselines`). None changes a pixel's meaning: culling and any-hit shadow rays
+/// change no pixel at all, the anchor interval moves the forward-differenced test's
+/// pixels only within its stated error bound.
+#[cfg(feature = "bench-baselines")]
 impl Options {
     /// The same options with span culling on or off.
     #[must_use]
@@ -62,18 +81,23 @@ impl Options {
         self
     }
 
-    /// The same options with anchor interval `k`.
+    /// Whether span culling is on.
+    #[must_use]
+    pub const fn span_culling(&self) -> bool {
+        self.span_culling
+    }
+
+    /// The same options with anchor interval `k` (`0` is taken as 1).
     #[must_use]
     pub const fn with_anchor_interval(mut self, k: u32) -> Self {
         self.anchor_interval = k;
         self
     }
 
-    /// The same options with secondary rays starting as `secondary` says.
+    /// The forward-differenced test's anchor interval.
     #[must_use]
-    pub const fn with_secondary(mut self, secondary: SecondaryOrigin) -> Self {
-        self.secondary = secondary;
-        self
+    pub const fn anchor_interval(&self) -> u32 {
+        self.anchor_interval
     }
 
     /// The same options with any-hit shadow rays on or off.
@@ -81,6 +105,12 @@ impl Options {
     pub const fn with_shadow_any_hit(mut self, on: bool) -> Self {
         self.shadow_any_hit = on;
         self
+    }
+
+    /// Whether shadow rays stop at the first occluder.
+    #[must_use]
+    pub const fn shadow_any_hit(&self) -> bool {
+        self.shadow_any_hit
     }
 }
 
@@ -90,8 +120,9 @@ impl Default for Options {
     }
 }
 
-/// One traced pixel, as [`Render::trace`] reports it.
+/// One traced pixel, as [`Render::trace`](crate::Render::trace) reports it.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Sample {
     /// Pixel position in the image (column, row), before the render's offset.
     pub pixel: Point,
@@ -113,6 +144,7 @@ pub struct Sample {
 /// mirrors use it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum SecondaryOrigin {
     /// No epsilon (default): the surface the ray leaves is not tested where convexity
     /// proves it cannot be met (leaving a plane, or a sphere's outside), and is met at
@@ -130,5 +162,21 @@ pub enum SecondaryOrigin {
 impl SecondaryOrigin {
     /// The textbook epsilon, `10⁻³` scene units.
     pub const TEXTBOOK: SecondaryOrigin = SecondaryOrigin::Epsilon(1e-3);
+}
+
+/// The CLI's name of the choice: `convex`, or `epsilon:` and the epsilon.
+///
+/// ```
+/// use embedded_raytracer::SecondaryOrigin;
+/// assert_eq!(SecondaryOrigin::Convex.to_string(), "convex");
+/// assert_eq!(SecondaryOrigin::TEXTBOOK.to_string(), "epsilon:0.001");
+/// ```
+impl core::fmt::Display for SecondaryOrigin {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            SecondaryOrigin::Convex => f.write_str("convex"),
+            SecondaryOrigin::Epsilon(eps) => write!(f, "epsilon:{eps}"),
+        }
+    }
 }
 

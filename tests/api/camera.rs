@@ -2,7 +2,7 @@
 //! construction error.
 
 use embedded_graphics::geometry::Size;
-use embedded_raytracer::camera::{MAX_FOV, MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
+use embedded_raytracer::{MAX_FOV, MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
 use embedded_raytracer::{Camera, CameraError, CameraParam, CameraParams, Vec3};
 
 fn close(a: Vec3, b: Vec3, tol: f32) -> bool {

@@ -3,7 +3,6 @@
 
 use core::fmt;
 
-
 /// A camera parameter, as named by [`CameraError`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]

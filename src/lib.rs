@@ -139,18 +139,18 @@ extern crate std;
 
 // The rooms, bottom to top: each imports only from those above it in this list
 // (`.ci/module-cycles` checks it, and that no two files import each other in a circle).
-pub mod math; // square roots, `Vec3`, the limits every bound is stated in
-mod error; // the typed errors of every constructor
 mod camera; // the pin-hole camera; each sphere's silhouette on the image
-mod scene; // the scene and its objects: spheres, planes, lights, materials
-mod method; // the method vocabulary, its one dispatch, stepping, sphere tests, single-ray queries
-mod trace; // per frame, per row, per pixel: options, frame constants, scanline loop, shading, features
-mod sampling; // anti-aliasing: one ray per pixel, grids, adaptive
+mod error; // the typed errors of every constructor
 mod integer; // the integer kernel for chips without an FPU
+pub mod math; // square roots, `Vec3`, the limits every bound is stated in
+mod method; // the method vocabulary, its one dispatch, stepping, sphere tests, single-ray queries
 mod output; // rows into targets (sinks) and the ordered dither
 mod render; // `Render`: the public renderer, where the method is matched
+mod sampling; // anti-aliasing: one ray per pixel, grids, adaptive
+mod scene; // the scene and its objects: spheres, planes, lights, materials
 #[cfg(host_std)]
-pub mod scene_file; // TOML scene files
+pub mod scene_file;
+mod trace; // per frame, per row, per pixel: options, frame constants, scanline loop, shading, features // TOML scene files
 
 pub use output::dither;
 pub use trace::shade;
@@ -162,6 +162,9 @@ pub use error::{
 };
 pub use math::limits::{MAX_FOV, MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
 pub use math::vec3::Vec3;
+pub use method::intersect::AUTO_FD_CAPACITY;
+#[cfg(feature = "bench-baselines")]
+pub use method::intersect::FD_ANCHOR_INTERVAL;
 pub use method::{Arithmetic, Method, SphereTest, Sqrt, Stepping, FPU_LESS};
 pub use render::Render;
 pub use sampling::{Sampling, SamplingError, SubSamples, ADAPTIVE_MAX_WIDTH};
@@ -171,9 +174,6 @@ pub use scene::plane::Plane;
 pub use scene::sphere::Sphere;
 pub use scene::{Hit, Scene, Settings, MAX_DEPTH};
 pub use trace::options::{Options, Sample, SecondaryOrigin};
-pub use method::intersect::AUTO_FD_CAPACITY;
-#[cfg(feature = "bench-baselines")]
-pub use method::intersect::FD_ANCHOR_INTERVAL;
 
 /// What the one-frame loop needs, in one `use`: the scene and its objects, the camera,
 /// the renderer, the method and sampling choices, and embedded-graphics' own prelude

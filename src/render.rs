@@ -15,21 +15,21 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use crate::camera::Camera;
-use crate::method::dispatch::{dispatch, Visit};
 use crate::error::{BandError, IntegerError};
 use crate::integer;
-use crate::trace::lab1;
+use crate::math::SqrtFn;
+use crate::method::dispatch::{dispatch, Visit};
 use crate::method::intersect::TestStrategy;
+use crate::method::stepping::Stepper;
+use crate::method::{Arithmetic, Method};
+use crate::output::sink::{BandSink, DrawSink, TraceSink};
+use crate::sampling::{AdaptiveRows, GridRows, Sampling, SpanAdaptiveRows};
+use crate::scene::Scene;
+use crate::trace::lab1;
 use crate::trace::lit;
 pub use crate::trace::options::{Options, Sample};
-use crate::math::SqrtFn;
-use crate::method::{Arithmetic, Method};
-use crate::sampling::{AdaptiveRows, GridRows, Sampling, SpanAdaptiveRows};
 use crate::trace::rows::{CenterRows, Rows};
-use crate::scene::Scene;
-use crate::output::sink::{BandSink, DrawSink, TraceSink};
 use crate::trace::scanline::RowSink;
-use crate::method::stepping::Stepper;
 
 /// A scene seen through a camera with a method, ready to draw.
 ///
@@ -106,7 +106,7 @@ impl<'a, const N: usize, C, const L: usize, const P: usize, const D: usize> Rend
     /// The same render with `sampling` rays per pixel (default [`Sampling::Center`]:
     /// one, through the centre): a grid of sub-pixel rays averaged in linear light,
     /// everywhere or only where an edge can cross the pixel. Matched once per frame;
-    /// see [`crate::sampling`]. A field of the render, not of [`Options`], so that a
+    /// see [`Sampling`]. A field of the render, not of [`Options`], so that a
     /// render that never sets it links none of it, whatever its options.
     ///
     /// ```

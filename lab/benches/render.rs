@@ -124,7 +124,12 @@ fn main() {
             (DEFAULT, Method::TARGET_DEFAULT, Options::DEFAULT, &file.scene),
             (LITERAL, Method::TARGET_DEFAULT, LITERAL_OPTIONS, &file.scene),
             (LITERAL_SEED, Method::LITERAL, LITERAL_OPTIONS, &file.scene),
-            (NO_SHADOW_RAYS, Method::TARGET_DEFAULT, Options::DEFAULT, unshadowed),
+            (
+                NO_SHADOW_RAYS,
+                Method::TARGET_DEFAULT,
+                Options::DEFAULT,
+                unshadowed,
+            ),
         ];
         for (label, method, options, scene) in cases {
             let render = Render::new(scene, &file.camera)

@@ -147,8 +147,11 @@ impl Picture {
 
 /// The scene file's camera at `size` (same vertical field of view).
 fn resized(camera: &Camera, size: Size) -> Camera {
-    camera.params().with_size(size).build()
-    .expect("the standard scenes' cameras are valid at the pictures' sizes")
+    camera
+        .params()
+        .with_size(size)
+        .build()
+        .expect("the standard scenes' cameras are valid at the pictures' sizes")
 }
 
 /// `scene` drawn with `sampling` on an `Rgb565` display.

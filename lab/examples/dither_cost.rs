@@ -31,8 +31,12 @@ fn main() -> Result<(), String> {
         .unwrap_or_else(|| "scenes/lab.toml".into());
     let file = scene_file::load::<MAX_SPHERES, 0, 0, 0>(&path).map_err(|e| e.to_string())?;
     let size = Size::new(128, 64);
-    let camera = file.camera.params().with_size(size).build()
-    .map_err(|e| e.to_string())?;
+    let camera = file
+        .camera
+        .params()
+        .with_size(size)
+        .build()
+        .map_err(|e| e.to_string())?;
     let mut display = SimulatorDisplay::<BinaryColor>::new(size);
 
     let mut times = [[0f64; ROUNDS]; 3];

@@ -698,7 +698,14 @@ fn sampling_cases<'a, const N: usize, const L: usize, const P: usize, const D: u
             ns: f64::NAN,
         });
         cases.push(Box::new(move || {
-            time_sampled(scene, &camera, Method::TARGET_DEFAULT, Options::DEFAULT, sampling, 1)
+            time_sampled(
+                scene,
+                &camera,
+                Method::TARGET_DEFAULT,
+                Options::DEFAULT,
+                sampling,
+                1,
+            )
         }));
     }
 }
@@ -1082,7 +1089,11 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     let direct_fd = Method::new(Stepping::Direct, SphereTest::ForwardDiff, Sqrt::Exact);
     let mut growth = Vec::new();
     for (name, method, culling) in [
-        (format!("default {}", Method::TARGET_DEFAULT), Method::TARGET_DEFAULT, true),
+        (
+            format!("default {}", Method::TARGET_DEFAULT),
+            Method::TARGET_DEFAULT,
+            true,
+        ),
         ("literal baseline, no culling".to_string(), Method::LITERAL, false),
         (direct_fd.to_string(), direct_fd, true),
     ] {

@@ -33,8 +33,8 @@
 //! The same fallback catches any non-finite coefficient.
 
 use crate::camera::Camera;
-use crate::math::{max, min};
 use crate::math::vec3::Vec3;
+use crate::math::{max, min};
 
 /// How much a test's rounding can widen its hit set beyond the true silhouette.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -72,20 +72,18 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::{Vec, VecView};
 
-use crate::camera::Camera;
-use crate::method::intersect::TestStrategy;
-use crate::math::{SqrtFn, EDGE_TOLERANCE};
-use crate::trace::options::{Options, Sample};
-use crate::trace::scanline::{ColorRuns, PixelRow};
-use crate::scene::{Hit, Scene};
-use crate::trace::scanline::RowSink;
 use crate::camera::span::{IntCut, Margin, Silhouette};
-use crate::scene::sphere::Sphere;
-use crate::method::stepping::Stepper;
+use crate::camera::Camera;
 use crate::math::vec3::Vec3;
-use crate::math::wide::{
-    div_q16, isqrt, mul_i32_wide, mul_i64_wide, mul_wide, shr_u64_low, ARMV6M,
-};
+use crate::math::wide::{div_q16, isqrt, mul_i32_wide, mul_i64_wide, mul_wide, shr_u64_low, ARMV6M};
+use crate::math::{SqrtFn, EDGE_TOLERANCE};
+use crate::method::intersect::TestStrategy;
+use crate::method::stepping::Stepper;
+use crate::scene::sphere::Sphere;
+use crate::scene::{Hit, Scene};
+use crate::trace::options::{Options, Sample};
+use crate::trace::scanline::RowSink;
+use crate::trace::scanline::{ColorRuns, PixelRow};
 
 /// Largest `|d|` (`2²⁶`): `a = |d|² ≤ 2⁵²`, `x`, `y`, `F` are `i32`.
 const MAX_D: f64 = 67_108_864.0;

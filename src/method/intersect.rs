@@ -15,9 +15,9 @@
 
 use core::num::NonZeroU32;
 
-use crate::math::{SqrtFn, EDGE_TOLERANCE, UNIT_ROUNDOFF};
 use crate::camera::span::{Extent, Margin};
 use crate::math::vec3::Vec3;
+use crate::math::{SqrtFn, EDGE_TOLERANCE, UNIT_ROUNDOFF};
 
 /// A sphere's per-frame geometry relative to the ray origin (the eye, for primary
 /// rays). Built once per frame so the per-pixel tests only multiply and add.

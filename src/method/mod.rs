@@ -90,7 +90,7 @@ axis! {
 
 axis! {
     /// Which ray–sphere intersection formula the pixel loop uses (strategy types in
-    /// [`intersect`](crate::method::intersect)).
+    /// `method/intersect.rs`).
     SphereTest, "sphere test" {
         /// The slides' quadratic (see [`Sphere::intersect_algebraic`](crate::Sphere::intersect_algebraic)).
         Algebraic => "algebraic",

@@ -82,20 +82,22 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
-use crate::trace::frame::{Frame, FrameSphere};
-use crate::method::intersect::TestStrategy;
+use crate::math::vec3::Vec3;
 use crate::math::SqrtFn;
+use crate::method::intersect::TestStrategy;
+use crate::method::stepping::Stepper;
+use crate::trace::frame::{Frame, FrameSphere};
 use crate::trace::options::Sample;
-use crate::trace::scanline::{self, ColorRuns, PixelRow, RowPixels, RowTracer};
-use crate::trace::shade::Shader;
 use crate::trace::rows::{Rows, FINE};
 use crate::trace::scanline::RowSink;
-use crate::method::stepping::Stepper;
-use crate::math::vec3::Vec3;
+use crate::trace::scanline::{self, ColorRuns, PixelRow, RowPixels, RowTracer};
+use crate::trace::shade::Shader;
 
 include!(concat!(env!("OUT_DIR"), "/srgb_tables.rs"));
 
-/// Rays per pixel; see the [module docs](self).
+/// Rays per pixel: one at the centre, a grid, or a grid only where an edge can cross
+/// the pixel (`src/sampling/mod.rs` documents how the edges are found and each rule's
+/// error bound).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
@@ -688,7 +690,9 @@ fn span_bands<const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
     use crate::camera::span::Silhouette;
     let camera = frame.camera;
     let step_err = S::error_bound(camera);
-    let err = step_err.max(<crate::method::stepping::DirectStep as Stepper>::error_bound(camera));
+    let err = step_err.max(<crate::method::stepping::DirectStep as Stepper>::error_bound(
+        camera,
+    ));
     let mut out: Vec<SpanBands, N> = Vec::new();
     let w = camera.w();
     for (k, fs) in frame.spheres.iter().enumerate() {

@@ -347,5 +347,4 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Scene<N, L,
     pub fn set_background(&mut self, background: Rgb888) {
         self.background = background;
     }
-
 }

@@ -4,8 +4,8 @@
 use embedded_graphics::pixelcolor::Rgb888;
 
 use crate::error::SphereError;
-use crate::scene::material::Material;
 use crate::math::vec3::Vec3;
+use crate::scene::material::Material;
 
 /// A sphere: centre, radius, (8-bit sRGB) colour and [`Material`] (matte by default).
 ///

@@ -11,14 +11,14 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
+use crate::camera::span::Silhouette;
 use crate::camera::Camera;
 use crate::method::intersect::{RowGeometry, Scale, SphereGeom, TestStrategy};
-use crate::trace::options::Options;
-use crate::scene::Scene;
-use crate::trace::shade::Shader;
-use crate::camera::span::Silhouette;
-use crate::scene::sphere::Sphere;
 use crate::method::stepping::Stepper;
+use crate::scene::sphere::Sphere;
+use crate::scene::Scene;
+use crate::trace::options::Options;
+use crate::trace::shade::Shader;
 
 /// A sphere as the frame sees it.
 ///

@@ -30,22 +30,22 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
+use crate::camera::span::{Margin, Silhouette};
 use crate::camera::Camera;
-use crate::trace::frame::{Frame, FrameSphere};
+use crate::math::vec3::Vec3;
+use crate::math::{sqrt_exact, SqrtFn, UNIT_ROUNDOFF};
 use crate::method::intersect::{Auto, Robust, Scale, SphereGeom, TestStrategy, AUTO_FD_CAPACITY};
+use crate::method::stepping::Stepper;
 use crate::scene::light::Light;
 use crate::scene::material::Material;
-use crate::math::{sqrt_exact, SqrtFn, UNIT_ROUNDOFF};
+use crate::scene::sphere::Sphere;
+use crate::scene::Scene;
+use crate::trace::frame::{Frame, FrameSphere};
 use crate::trace::options::{Options, SecondaryOrigin};
 use crate::trace::rows::{Fnv, Ident, Rows};
-use crate::trace::scanline::RowTracer;
-use crate::scene::Scene;
-use crate::trace::shade::{channels, lab1_factor, Shader};
 use crate::trace::scanline::RowSink;
-use crate::camera::span::{Margin, Silhouette};
-use crate::scene::sphere::Sphere;
-use crate::method::stepping::Stepper;
-use crate::math::vec3::Vec3;
+use crate::trace::scanline::RowTracer;
+use crate::trace::shade::{channels, lab1_factor, Shader};
 
 /// How a secondary ray leaves its surface, as a strategy type.
 pub(crate) trait Exit {

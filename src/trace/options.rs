@@ -11,7 +11,7 @@ use crate::math::vec3::Vec3;
 use crate::method::intersect::FD_ANCHOR_INTERVAL;
 use crate::scene::Hit;
 
-/// How a render traces besides the [`Method`] and the [`Sampling`](crate::Sampling):
+/// How a render traces besides the [`Method`](crate::Method) and the [`Sampling`](crate::Sampling):
 /// where shadow and reflection rays start ([`SecondaryOrigin`]). Nothing here changes
 /// what a pixel means beyond that choice.
 ///
@@ -133,7 +133,7 @@ pub struct Sample {
     /// The shaded colour.
     pub color: Rgb888,
     /// The rays averaged into `color`: 1 for the centre ray alone, `n²` where
-    /// [`Sampling`] traced the pixel's grid (then `hit` is `None`: several rays have
+    /// [`Sampling`](crate::Sampling) traced the pixel's grid (then `hit` is `None`: several rays have
     /// no single hit).
     pub rays: u32,
 }
@@ -179,4 +179,3 @@ impl core::fmt::Display for SecondaryOrigin {
         }
     }
 }
-

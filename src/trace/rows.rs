@@ -95,4 +95,3 @@ impl Rows for CenterRows {
         scanline::draw_rows::<N, K, S, T, Q, Sh, X>(frame, sink, tracer)
     }
 }
-

@@ -17,14 +17,14 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
-use crate::trace::frame::{Frame, FrameSphere};
-use crate::method::intersect::{Scale, TestStrategy};
-use crate::math::SqrtFn;
-use crate::trace::options::Sample;
-use crate::scene::Hit;
-use crate::trace::shade::{Lab1, Shader};
-use crate::method::stepping::{RowStep, Stepper};
 use crate::math::vec3::Vec3;
+use crate::math::SqrtFn;
+use crate::method::intersect::{Scale, TestStrategy};
+use crate::method::stepping::{RowStep, Stepper};
+use crate::scene::Hit;
+use crate::trace::frame::{Frame, FrameSphere};
+use crate::trace::options::Sample;
+use crate::trace::shade::{Lab1, Shader};
 
 /// What a row does with each pixel's closest sphere hit: the shading model, and any
 /// primitive beyond spheres. Built once per row.

@@ -179,8 +179,7 @@ fn at_max_depth_the_background_stands_in_for_the_reflection() {
                 .with_material(Material::new(0.0, 32.0, reflect)),
         )
         .unwrap();
-        s.set_settings(Settings::DEFAULT.with_max_depth(0))
-        .unwrap();
+        s.set_settings(Settings::DEFAULT.with_max_depth(0)).unwrap();
         let mut c = None;
         Render::<1, Rgb888, 0, 0, 1>::new(&s, &camera).trace(|p| {
             if p.pixel == Point::new(4, 4) {
@@ -258,7 +257,12 @@ fn shadows_follow_the_segment_rule() {
         s.push_plane(Plane::new(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), grey))
             .unwrap();
         s.push_light(light).unwrap();
-        s.set_settings(Settings::DEFAULT.with_ambient(0.1).with_shadows(shadows).with_max_depth(0))
+        s.set_settings(
+            Settings::DEFAULT
+                .with_ambient(0.1)
+                .with_shadows(shadows)
+                .with_max_depth(0),
+        )
         .unwrap();
         s
     };
@@ -306,8 +310,7 @@ fn eye_inside_a_mirror_sphere() {
     )
     .unwrap();
     s.push_light(Light::point(Vec3::new(1.0, 2.0, 0.0), 1.0)).unwrap();
-    s.set_settings(Settings::DEFAULT.with_max_depth(4))
-    .unwrap();
+    s.set_settings(Settings::DEFAULT.with_max_depth(4)).unwrap();
     let camera = Camera::new(
         Vec3::new(0.0, 0.0, 2.0),
         Vec3::ZERO,

@@ -302,7 +302,9 @@ mod fw {
                 scenes::for_each(&mut renders);
                 !renders.failed
             }
-            Selection::Quick => render_scene("lab", &scenes::LAB, scenes::LAB_CAMERA, &[Method::TARGET_DEFAULT]),
+            Selection::Quick => {
+                render_scene("lab", &scenes::LAB, scenes::LAB_CAMERA, &[Method::TARGET_DEFAULT])
+            }
             Selection::Features => true,
         };
         if selection != Selection::Quick {

@@ -10,17 +10,17 @@ use embedded_graphics::geometry::Size;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
 use super::{compare, intersect, render, render_params, Metrics, ReferenceImage, D3};
-use embedded_raytracer::{Camera, CameraParams, MIN_PIXEL_SIZE};
 use embedded_raytracer::CameraError;
 use embedded_raytracer::Light;
 use embedded_raytracer::Material;
-use embedded_raytracer::{Method, SphereTest, Sqrt, Stepping};
 use embedded_raytracer::Plane;
-use embedded_raytracer::{Options, Render};
-use embedded_raytracer::{Scene, Settings};
+use embedded_raytracer::SecondaryOrigin;
 use embedded_raytracer::Sphere;
 use embedded_raytracer::Vec3;
-use embedded_raytracer::SecondaryOrigin;
+use embedded_raytracer::{Camera, CameraParams, MIN_PIXEL_SIZE};
+use embedded_raytracer::{Method, SphereTest, Sqrt, Stepping};
+use embedded_raytracer::{Options, Render};
+use embedded_raytracer::{Scene, Settings};
 
 /// The six sphere-test × square-root combinations, with [`Stepping::Direct`] so the
 /// stepping adds no error of its own.
@@ -610,7 +610,14 @@ pub fn lit_points<const N: usize, const L: usize, const P: usize, const D: usize
         out.push(LitPoint {
             x,
             secondary,
-            errors: lit_errors(scene, camera, &truth, &unshadowed, Method::TARGET_DEFAULT, secondary),
+            errors: lit_errors(
+                scene,
+                camera,
+                &truth,
+                &unshadowed,
+                Method::TARGET_DEFAULT,
+                secondary,
+            ),
         });
     }
 }
@@ -760,9 +767,7 @@ pub fn contact_sweep(scales: &[f64]) -> Vec<LitPoint> {
 #[must_use]
 pub fn mirror_inside_scene(k: f32, size: Size) -> Option<(Scene<2, 1, 0, 8>, Camera)> {
     let mut scene: Scene<2, 1, 0, 8> = Scene::new(Rgb888::BLACK);
-    scene
-        .set_settings(Settings::DEFAULT.with_max_depth(8))
-        .ok()?;
+    scene.set_settings(Settings::DEFAULT.with_max_depth(8)).ok()?;
     scene
         .push(
             Sphere::new(Vec3::ZERO, 5.0 * k, Rgb888::new(200, 200, 200))

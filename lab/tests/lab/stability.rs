@@ -6,11 +6,11 @@
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
-use embedded_raytracer::{MAX_FOV, MIN_PIXEL_SIZE};
 use embedded_raytracer::{
     Camera, CameraError, CameraParam, CameraParams, Method, Render, Scene, Sphere, SphereTest, Sqrt,
     Stepping, Vec3,
 };
+use embedded_raytracer::{MAX_FOV, MIN_PIXEL_SIZE};
 use embedded_raytracer_lab::reference::sweeps::{self, *};
 use embedded_raytracer_lab::reference::{self, intersect, D3};
 

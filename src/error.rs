@@ -3,11 +3,10 @@
 
 use core::fmt;
 
-pub use crate::method::ParseMethodError;
-
 /// A camera parameter, as named by [`CameraError`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum CameraParam {
     /// The eye (camera position).
     Eye,
@@ -39,6 +38,7 @@ impl CameraParam {
 /// Why a [`Camera`](crate::Camera) could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum CameraError {
     /// A parameter is NaN or infinite.
     NotFinite(CameraParam),
@@ -76,7 +76,7 @@ impl CameraError {
 
 impl fmt::Display for CameraError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        use crate::limits::{MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
+        use crate::math::limits::{MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
         match self {
             CameraError::NotFinite(p) => write!(f, "`{}` is not a finite number", p.file_key()),
             CameraError::EyeAtLookAt => {
@@ -109,6 +109,7 @@ impl core::error::Error for CameraError {}
 /// Why a [`Sphere`](crate::Sphere) is invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum SphereError {
     /// The centre or radius is NaN or infinite.
     NotFinite,
@@ -131,6 +132,7 @@ impl fmt::Display for SphereError {
 /// Why a [`Material`](crate::Material) is invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum MaterialError {
     /// `specular` is not in `[0, 1]`.
     Specular,
@@ -167,6 +169,7 @@ impl core::error::Error for MaterialError {}
 /// Why a [`Light`](crate::Light) is invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum LightError {
     /// The direction or position is NaN or infinite.
     NotFinite,
@@ -203,6 +206,7 @@ impl core::error::Error for LightError {}
 /// Why a [`Plane`](crate::Plane) is invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum PlaneError {
     /// The point or normal is NaN or infinite.
     NotFinite,
@@ -243,6 +247,7 @@ impl core::error::Error for PlaneError {}
 /// Why a scene's [`Settings`](crate::Settings) are invalid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum SettingsError {
     /// `ambient` is not in `[0, 1]`.
     Ambient,
@@ -280,6 +285,7 @@ impl core::error::Error for SphereError {}
 /// Why an object or setting could not be added to a [`Scene`](crate::Scene).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum SceneError {
     /// The scene already holds its capacity `N` of spheres.
     Full {
@@ -336,6 +342,7 @@ impl core::error::Error for SceneError {}
 /// Why [`Render::draw_band`](crate::Render::draw_band) refused a band.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum BandError {
     /// The rows are empty or reach past the image.
     Rows {
@@ -376,6 +383,7 @@ impl core::error::Error for BandError {}
 /// [`Render::draw_band_integer`](crate::Render::draw_band_integer) the band.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum IntegerError<E> {
     /// The integer kernel does not take this frame: its per-frame rule (see
     /// [`Arithmetic::Integer`](crate::Arithmetic::Integer)) does not hold for the scene
@@ -424,3 +432,36 @@ impl From<SettingsError> for SceneError {
         SceneError::Settings(e)
     }
 }
+
+/// A method name (`--stepping`, `--sphere-test`, `--sqrt`) that is not one of the choices.
+///
+/// ```
+/// use embedded_raytracer::{ParseMethodError, Sqrt};
+/// let e = "slow".parse::<Sqrt>().unwrap_err();
+/// assert_eq!((e.what, e.expected), ("sqrt", Sqrt::NAMES));
+/// assert_eq!(e.to_string(), "unknown sqrt: expected one of exact, fast");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub struct ParseMethodError {
+    /// What was being parsed (`stepping`, `sphere test`, `sqrt`).
+    pub what: &'static str,
+    /// The accepted names, in the axis' order; `Display` joins them with `, `.
+    pub expected: &'static [&'static str],
+}
+
+impl fmt::Display for ParseMethodError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "unknown {}: expected one of ", self.what)?;
+        for (k, name) in self.expected.iter().enumerate() {
+            if k > 0 {
+                f.write_str(", ")?;
+            }
+            f.write_str(name)?;
+        }
+        Ok(())
+    }
+}
+
+impl core::error::Error for ParseMethodError {}

@@ -3,32 +3,48 @@
 //! A `no_std`, allocation-free ray-tracing kernel: spheres — and, where the scene's
 //! type asks for them, lights with hard shadows, checkered planes and mirrors — seen by
 //! a pin-hole camera, streamed scanline by scanline into any embedded-graphics
-//! [`DrawTarget`](embedded_graphics::draw_target::DrawTarget) — an SPI LCD driver, the
-//! desktop simulator, a test's `MockDisplay`.
+//! [`DrawTarget`](embedded_graphics::draw_target::DrawTarget): an SPI LCD driver, the
+//! desktop simulator, a test's `MockDisplay`. No framebuffer, no allocation, no panic.
+//!
+//! ## One frame
+//!
+//! A scene lives in flash as a `static`; the camera is checked when it is built; the
+//! render draws straight into the display, converting to its colour type:
 //!
 //! ```
-//! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb888, prelude::*};
-//! use embedded_raytracer::{Camera, Render, Scene, Sphere, Vec3};
+//! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::{Rgb565, Rgb888}};
+//! use embedded_raytracer::prelude::*;
 //!
 //! static SCENE: Scene<2> = Scene::from_array(
 //!     [
 //!         Sphere::new(Vec3::new(0.0, 0.0, 0.0), 1.0, Rgb888::new(255, 64, 64)),
 //!         Sphere::new(Vec3::new(1.2, 0.5, -1.5), 1.0, Rgb888::new(64, 64, 255)),
 //!     ],
-//!     Rgb888::new(0, 0, 0),
+//!     Rgb888::BLACK,
 //! );
 //!
-//! let camera = Camera::new(
-//!     Vec3::new(0.0, 0.0, 5.0),   // eye
-//!     Vec3::new(0.0, 0.0, 0.0),   // look at
-//!     Vec3::new(0.0, 1.0, 0.0),   // up
-//!     60f32.to_radians(),         // vertical field of view
-//!     Size::new(64, 48),
-//! )?;
-//! let mut display = MockDisplay::<Rgb888>::new();
-//! Render::new(&SCENE, &camera).draw(&mut display)?;
-//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! fn frame<D: DrawTarget<Color = Rgb565>>(display: &mut D, angle: f32) -> Result<(), D::Error> {
+//!     // Orbit the eye around the origin: move the camera between frames.
+//!     let eye = Vec3::new(5.0 * angle.sin(), 0.0, 5.0 * angle.cos());
+//!     let Ok(camera) = Camera::new(eye, Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), 60f32.to_radians(), display.bounding_box().size) else {
+//!         return Ok(()); // a camera the kernel refuses (say, `up` parallel to the view): show an error instead
+//!     };
+//!     Render::new(&SCENE, &camera).draw(display)
+//! }
+//!
+//! let mut display = MockDisplay::<Rgb565>::new();
+//! frame(&mut display, 0.0)?;
+//! # Ok::<(), core::convert::Infallible>(())
 //! ```
+//!
+//! [`Render::draw_band`] traces rows into a caller's buffer instead (for DMA), and
+//! [`Render::draw_integer`] draws with the integer kernel alone (chips without an FPU).
+//! The optional parts of a render are its builder methods: [`Render::with_method`]
+//! (the speed/accuracy trade, [`Method`]), [`Render::with_sampling`] (anti-aliasing,
+//! [`Sampling`]), [`Render::with_offset`] (a sub-rectangle of the display); a
+//! low-depth display takes the ordered dither, `render.draw(&mut display.dithered())`
+//! ([`dither`]). A camera's optional part, non-square pixels, is [`CameraParams`]'
+//! `with_fov_x`.
 //!
 //! ## Conventions
 //!
@@ -39,33 +55,32 @@
 //! right and row `j` top to bottom. Shading is the seed's Lab #1,
 //! `colour × clamp(n·(−w), 0.3, 1)`. The same scene and method give bit-identical
 //! pixels on every target (IEEE-754 `f32`, no fused multiply-add, the same libm).
+//! Constructors that take run-time values return typed errors; the const ones
+//! (for `static` scenes) do not check, and each type's `check` applies the same rules
+//! in a const context.
 //!
-//! ## The pipeline, and the module for each step
+//! ## The pipeline, and the room (folder of `src/`) for each step
 //!
-//! A frame is drawn in one pass, from the camera to the display:
-//!
-//! 1. **Camera** ([`camera`]): the u/v/w basis, the pixel size from the field of view,
+//! 1. **Camera** (`camera/`): the u/v/w basis, the pixel size from the field of view,
 //!    the upper-left pixel's direction and the per-column and per-row steps — once,
-//!    when the camera is built.
-//! 2. **Method** ([`method`], matched once per frame in `dispatch.rs`): the [`Method`]
-//!    value becomes zero-sized strategy types — a stepping (`stepping.rs`), a sphere
-//!    test ([`intersect`]) and a square root ([`math`]) — and everything below is
-//!    monomorphised over them, so the pixel loop has no branch on the method.
-//! 3. **Per-frame constants** (`frame.rs`): the visible part of the image, and per
-//!    sphere its eye-relative geometry, the test's and the shader's constants.
-//! 4. **Silhouettes and spans** (`span.rs`): each sphere's silhouette as an ellipse on
-//!    the image, enlarged by the proven rounding margins, cut per row into the columns
-//!    whose rays can hit it.
-//! 5. **Per-row tests** (`scanline.rs`): per pixel, the ray's direction from the
-//!    stepping, the closest hit among the spheres whose span holds the column.
-//! 6. **Shade** ([`shade`]): the hit's colour (the seed's Lab #1). A scene type with
-//!    lights, planes or a reflection depth (`Scene<N, L, P, D>`, see [`Scene`]) takes
-//!    the scene-features path instead (`lit.rs`): the planes' hits, Phong shading with a
-//!    shadow ray per light, and the reflection loop; secondary rays start as
-//!    [`SecondaryOrigin`] says (no epsilon by default).
-//! 7. **Sink** (`sink.rs`): each row, as an iterator, into the target's
-//!    `fill_contiguous` (or to a callback for [`Render::trace`]); [`dither`] adapts the
-//!    stream to 1-, 2- and 4-bit displays.
+//!    when the camera is built; each sphere's silhouette on the image (`camera/span.rs`).
+//! 2. **Scene** (`scene/`): spheres, planes, lights, materials, the settings.
+//! 3. **Method** (`method/`): the [`Method`] value, matched once per frame in
+//!    `dispatch.rs`, becomes zero-sized strategy types — a stepping (`stepping.rs`), a
+//!    sphere test (`intersect.rs`) and a square root ([`math`]) — and everything below
+//!    is monomorphised over them, so the pixel loop has no branch on the method.
+//! 4. **Tracing** (`trace/`), at its three rates: per frame the visible part of the
+//!    image and each sphere's constants (`frame.rs`), per row the spheres whose span
+//!    holds the row (`scanline.rs`), per pixel the closest hit, shaded (`shade.rs`:
+//!    Lab #1). A scene type with lights, planes or a reflection depth
+//!    (`Scene<N, L, P, D>`) takes the features path (`lit.rs`): Phong shading with a
+//!    shadow ray per light, the planes, the reflection loop.
+//! 5. **Sampling** (`sampling/`): one ray per pixel, a grid, or extra rays only where
+//!    an edge can cross the pixel.
+//! 6. **The integer kernel** (`integer/`): the same Lab #1 frame in exact integer
+//!    arithmetic, for chips without an FPU.
+//! 7. **Output** (`output/`): each row into the target's `fill_contiguous`, a band
+//!    buffer or a callback; the ordered [`dither`] for 1-, 2- and 4-bit displays.
 //!
 //! `ARCHITECTURE.md` in the repository says where to add a primitive, a light, a
 //! sample per pixel or a number format.
@@ -82,17 +97,18 @@
 //!   ray–sphere tests ([`SphereTest::Algebraic`], [`SphereTest::Geometric`]).
 //! - **The literal method** ([`Method::LITERAL`]): all of the above, as the notes give them.
 //!
-//! ## Low-depth displays
-//!
-//! [`dither`] turns the `Rgb888` stream into `BinaryColor`, `Gray2` or `Gray4` with an
-//! ordered (Bayer) dither keyed by pixel position: `render.draw(&mut display.dithered())`.
-//!
 //! ## Features
 //!
-//! - `std` (default): `scene_file`, TOML scene files with field-level errors (toml and
+//! - `std` (default): [`scene_file`], TOML scene files with field-level errors (toml and
 //!   serde). Inert on bare-metal targets (`target_os = "none"`); use
 //!   `default-features = false` in firmware to make that explicit.
 //! - `defmt`: `defmt::Format` on the errors and the small public types.
+//! - `bench-baselines`: the knobs that exist to measure the kernel against its own
+//!   literal baselines, not to draw — span culling off, the forward-differenced test's
+//!   anchor interval, closest-hit shadow rays ([`Options`]'s `with_span_culling`,
+//!   `with_anchor_interval`, `with_shadow_any_hit`) and the constants they are
+//!   measured against (`FD_ANCHOR_INTERVAL`). None changes what a pixel means; the
+//!   repository's lab uses them.
 //!
 //! The render CLI, the desktop preview, the boards and the accuracy lab (the `f64`
 //! reference renderer, the sweeps, the benchmarks) are packages of their own in the
@@ -121,50 +137,62 @@
 #[cfg(host_std)]
 extern crate std;
 
-pub mod camera;
-mod dispatch;
-pub mod dither;
-pub mod error;
-mod fixed;
-mod frame;
-pub mod intersect;
-pub mod light;
-mod limits;
-mod lit;
-pub mod material;
-pub mod math;
-pub mod method;
-pub mod plane;
-pub mod render;
-pub mod sampling;
-mod scanline;
-pub mod scene;
+// The rooms, bottom to top: each imports only from those above it in this list
+// (`.ci/module-cycles` checks it, and that no two files import each other in a circle).
+mod camera; // the pin-hole camera; each sphere's silhouette on the image
+mod error; // the typed errors of every constructor
+mod integer; // the integer kernel for chips without an FPU
+pub mod math; // square roots, `Vec3`, the limits every bound is stated in
+mod method; // the method vocabulary, its one dispatch, stepping, sphere tests, single-ray queries
+mod output; // rows into targets (sinks) and the ordered dither
+mod render; // `Render`: the public renderer, where the method is matched
+mod sampling; // anti-aliasing: one ray per pixel, grids, adaptive
+mod scene; // the scene and its objects: spheres, planes, lights, materials
 #[cfg(host_std)]
 pub mod scene_file;
-pub mod shade;
-mod sink;
-mod span;
-pub mod sphere;
-mod stepping;
-pub mod vec3;
+mod trace; // per frame, per row, per pixel: options, frame constants, scanline loop, shading, features // TOML scene files
+
+pub use output::dither;
+pub use trace::shade;
 
 pub use camera::{Camera, CameraParams};
+pub use error::{
+    BandError, CameraError, CameraParam, IntegerError, LightError, MaterialError, ParseMethodError,
+    PlaneError, SceneError, SettingsError, SphereError,
+};
+pub use math::limits::{MAX_FOV, MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
+pub use math::vec3::Vec3;
+pub use method::intersect::AUTO_FD_CAPACITY;
+#[cfg(feature = "bench-baselines")]
+pub use method::intersect::FD_ANCHOR_INTERVAL;
+pub use method::{Arithmetic, Method, SphereTest, Sqrt, Stepping, FPU_LESS};
+pub use render::Render;
+pub use sampling::{Sampling, SamplingError, SubSamples, ADAPTIVE_MAX_WIDTH};
+pub use scene::light::Light;
+pub use scene::material::Material;
+pub use scene::plane::Plane;
+pub use scene::sphere::Sphere;
+pub use scene::{Hit, Scene, Settings, MAX_DEPTH};
+pub use trace::options::{Options, Sample, SecondaryOrigin};
+
+/// What the one-frame loop needs, in one `use`: the scene and its objects, the camera,
+/// the renderer, the method and sampling choices, and embedded-graphics' own prelude
+/// (`DrawTarget`, `Size`, `Point`, …).
+///
+/// ```
+/// use embedded_raytracer::prelude::*;
+/// let camera = Camera::new(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), 1.0, Size::new(8, 8));
+/// assert!(camera.is_ok());
+/// ```
+pub mod prelude {
+    pub use crate::dither::DitherExt as _;
+    pub use crate::{
+        Camera, CameraParams, Light, Material, Method, Plane, Render, Sampling, Scene, Settings, Sphere, Vec3,
+    };
+    pub use embedded_graphics::prelude::*;
+}
 
 // The README's code blocks run as doctests too.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
-pub use error::{
-    BandError, CameraError, CameraParam, IntegerError, LightError, MaterialError, ParseMethodError,
-    PlaneError, SceneError, SettingsError, SphereError,
-};
-pub use light::Light;
-pub use lit::SecondaryOrigin;
-pub use material::Material;
-pub use method::{Arithmetic, Method, SphereTest, Sqrt, Stepping, FPU_LESS};
-pub use plane::Plane;
-pub use render::{Options, Render, Sample};
-pub use sampling::{Sampling, SamplingError, SubSamples};
-pub use scene::{Hit, Scene, Settings, MAX_DEPTH};
-pub use sphere::Sphere;
-pub use vec3::Vec3;

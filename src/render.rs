@@ -15,115 +15,21 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use crate::camera::Camera;
-use crate::dispatch::{dispatch, Visit};
 use crate::error::{BandError, IntegerError};
-use crate::fixed;
-use crate::frame;
-use crate::intersect::{TestStrategy, FD_ANCHOR_INTERVAL};
-use crate::lit::{self, SecondaryOrigin};
+use crate::integer;
 use crate::math::SqrtFn;
+use crate::method::dispatch::{dispatch, Visit};
+use crate::method::intersect::TestStrategy;
+use crate::method::stepping::Stepper;
 use crate::method::{Arithmetic, Method};
-use crate::sampling::{AdaptiveRows, CenterRows, GridRows, Rows, Sampling, SpanAdaptiveRows};
-use crate::scene::{Hit, Scene};
-use crate::sink::{BandSink, DrawSink, RowSink, TraceSink};
-use crate::stepping::Stepper;
-use crate::vec3::Vec3;
-
-/// Speed settings of a render besides the [`Method`]. Neither changes what a pixel
-/// means: span culling changes no pixel at all, and the anchor interval moves the
-/// forward-differenced test's pixels only within its stated error bound.
-///
-/// ```
-/// use embedded_raytracer::{intersect::FD_ANCHOR_INTERVAL, Options};
-/// let o = Options::DEFAULT;
-/// assert!(o.span_culling);
-/// assert_eq!(o.anchor_interval, FD_ANCHOR_INTERVAL);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Options {
-    /// Span culling (default on): a sphere is tested only in the columns of each row
-    /// that its silhouette, enlarged by the test's and the stepping's proven rounding
-    /// margins, can reach. Proven to change no pixel (`tests/api/speed.rs`, bit for bit
-    /// against the unculled render). Off, every sphere is tested at every pixel — the
-    /// seed's algorithm taken literally, the benchmarks' baseline.
-    pub span_culling: bool,
-    /// The anchor interval K of the forward-differenced test (default
-    /// [`FD_ANCHOR_INTERVAL`]; `0` is taken as 1): its differences are re-evaluated
-    /// directly every K columns. The edge error bound grows with K (see
-    /// [`SphereTest::ForwardDiff`](crate::SphereTest::ForwardDiff)); for measuring it.
-    pub anchor_interval: u32,
-    /// Where shadow and reflection rays start (default [`SecondaryOrigin::Convex`]: no
-    /// epsilon). Only scenes with lights or mirrors trace such rays.
-    pub secondary: SecondaryOrigin,
-    /// Shadow rays stop at the first occluder, testing first the one that shadowed the
-    /// previous pixel (default on). Off, every object is tested for every shadow ray,
-    /// as a closest-hit search would — the benchmarks' literal baseline; no pixel
-    /// changes.
-    pub shadow_any_hit: bool,
-}
-
-impl Options {
-    /// Span culling on, anchor interval [`FD_ANCHOR_INTERVAL`].
-    pub const DEFAULT: Options = Options {
-        span_culling: true,
-        anchor_interval: FD_ANCHOR_INTERVAL,
-        secondary: SecondaryOrigin::Convex,
-        shadow_any_hit: true,
-    };
-}
-
-impl Options {
-    /// The same options with span culling on or off.
-    #[must_use]
-    pub const fn with_span_culling(mut self, on: bool) -> Self {
-        self.span_culling = on;
-        self
-    }
-
-    /// The same options with anchor interval `k`.
-    #[must_use]
-    pub const fn with_anchor_interval(mut self, k: u32) -> Self {
-        self.anchor_interval = k;
-        self
-    }
-
-    /// The same options with secondary rays starting as `secondary` says.
-    #[must_use]
-    pub const fn with_secondary(mut self, secondary: SecondaryOrigin) -> Self {
-        self.secondary = secondary;
-        self
-    }
-
-    /// The same options with any-hit shadow rays on or off.
-    #[must_use]
-    pub const fn with_shadow_any_hit(mut self, on: bool) -> Self {
-        self.shadow_any_hit = on;
-        self
-    }
-}
-
-impl Default for Options {
-    fn default() -> Self {
-        Options::DEFAULT
-    }
-}
-
-/// One traced pixel, as [`Render::trace`] reports it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sample {
-    /// Pixel position in the image (column, row), before the render's offset.
-    pub pixel: Point,
-    /// The ray direction `p − eye` the stepping produced for this pixel.
-    pub direction: Vec3,
-    /// The closest hit, if any.
-    pub hit: Option<Hit>,
-    /// The shaded colour.
-    pub color: Rgb888,
-    /// The rays averaged into `color`: 1 for the centre ray alone, `n²` where
-    /// [`Sampling`] traced the pixel's grid (then `hit` is `None`: several rays have
-    /// no single hit).
-    pub rays: u32,
-}
+use crate::output::sink::{BandSink, DrawSink, TraceSink};
+use crate::sampling::{AdaptiveRows, GridRows, Sampling, SpanAdaptiveRows};
+use crate::scene::Scene;
+use crate::trace::lab1;
+use crate::trace::lit;
+pub use crate::trace::options::{Options, Sample};
+use crate::trace::rows::{CenterRows, Rows};
+use crate::trace::scanline::RowSink;
 
 /// A scene seen through a camera with a method, ready to draw.
 ///
@@ -167,7 +73,7 @@ impl<'a, const N: usize, C, const L: usize, const P: usize, const D: usize> Rend
         Self {
             scene,
             camera,
-            method: Method::DEFAULT,
+            method: Method::TARGET_DEFAULT,
             options: Options::DEFAULT,
             sampling: Sampling::Center,
             offset: Point::zero(),
@@ -200,7 +106,7 @@ impl<'a, const N: usize, C, const L: usize, const P: usize, const D: usize> Rend
     /// The same render with `sampling` rays per pixel (default [`Sampling::Center`]:
     /// one, through the centre): a grid of sub-pixel rays averaged in linear light,
     /// everywhere or only where an edge can cross the pixel. Matched once per frame;
-    /// see [`crate::sampling`]. A field of the render, not of [`Options`], so that a
+    /// see [`Sampling`]. A field of the render, not of [`Options`], so that a
     /// render that never sets it links none of it, whatever its options.
     ///
     /// ```
@@ -466,7 +372,7 @@ impl<const N: usize, C: PixelColor + From<Rgb888>, const L: usize, const P: usiz
         if !self.integer_kind() {
             return Err(IntegerError::Refused);
         }
-        match fixed::render::<N, _>(
+        match integer::render::<N, _>(
             self.scene.spheres(),
             self.scene.background(),
             self.camera,
@@ -512,7 +418,7 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
         let full = Rectangle::new(Point::zero(), self.camera.size());
         let integer = self.method.arithmetic == Arithmetic::Integer
             && self.integer_kind()
-            && fixed::IntFrame::new(
+            && integer::IntFrame::new(
                 heapless::Vec::<_, N>::new().as_mut_view(),
                 self.scene.spheres(),
                 self.scene.background(),
@@ -612,7 +518,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
             // The arithmetic, once per frame: the integer kernel where its rule takes the
             // frame, else this f32 method (both out of line, so their stacks never add).
             // Sub-pixel rays are the f32 method's.
-            fixed::render_or_f32::<N, L, P, D, K, S, T, Q>(
+            integer::render_or_f32::<N, L, P, D, K, S, T, Q>(
                 self.scene,
                 self.camera,
                 self.options,
@@ -621,7 +527,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
                 self.sink,
             )
         } else {
-            frame::render::<N, L, P, D, K, S, T, Q, G>(
+            lab1::render::<N, L, P, D, K, S, T, Q, G>(
                 self.scene,
                 self.camera,
                 self.options,

@@ -87,12 +87,12 @@ use serde::Deserialize;
 
 use crate::camera::{Camera, CameraParams};
 use crate::error::{CameraError, LightError, PlaneError, SceneError, SphereError};
-use crate::light::Light;
-use crate::material::Material;
-use crate::plane::Plane;
+use crate::math::vec3::Vec3;
+use crate::scene::light::Light;
+use crate::scene::material::Material;
+use crate::scene::plane::Plane;
+use crate::scene::sphere::Sphere;
 use crate::scene::{Scene, Settings};
-use crate::sphere::Sphere;
-use crate::vec3::Vec3;
 
 /// The largest scene file [`load`] reads, in bytes (1 MiB; `scenes/crowd.toml`, 64
 /// spheres, is 5,351 bytes).
@@ -521,7 +521,9 @@ pub fn parse<const N: usize, const L: usize, const P: usize, const D: usize>(
     if let Some(fov_x) = &c.fov_x_deg {
         params = params.with_fov_x(radians(fov_x.0));
     }
-    let camera = Camera::from_params(params).map_err(|e| SceneFileError::field(camera_field(e, size), e))?;
+    let camera = params
+        .build()
+        .map_err(|e| SceneFileError::field(camera_field(e, size), e))?;
 
     let background = raw.background.as_ref().map_or(Rgb888::new(0, 0, 0), rgb);
     let mut scene = Scene::new(background);

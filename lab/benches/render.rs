@@ -35,7 +35,7 @@ use std::time::{Duration, Instant};
 use criterion::{measurement::WallTime, BenchmarkGroup, BenchmarkId, Criterion, Throughput};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use embedded_raytracer::{Camera, Material, Method, Options, Render, Scene, Settings};
+use embedded_raytracer::{Camera, Material, Method, Options, Render, Scene};
 
 use embedded_raytracer_lab::standard;
 use standard::{FullSceneFile, FEATURE_SCENES, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES, SCENES};
@@ -102,10 +102,7 @@ fn main() {
     // Each feature scene without its shadows (everything else as loaded).
     let unshadowed = files.each_ref().map(|(name, file)| {
         let mut scene = file.scene.clone();
-        let settings = Settings {
-            shadows: false,
-            ..scene.settings()
-        };
+        let settings = scene.settings().with_shadows(false);
         scene
             .set_settings(settings)
             .unwrap_or_else(|e| panic!("{name} without shadows: {e}"));
@@ -124,10 +121,15 @@ fn main() {
     for ((name, file), unshadowed) in files.iter().zip(&unshadowed) {
         let mut group = c.benchmark_group(*name);
         let cases = [
-            (DEFAULT, Method::DEFAULT, Options::DEFAULT, &file.scene),
-            (LITERAL, Method::DEFAULT, LITERAL_OPTIONS, &file.scene),
+            (DEFAULT, Method::TARGET_DEFAULT, Options::DEFAULT, &file.scene),
+            (LITERAL, Method::TARGET_DEFAULT, LITERAL_OPTIONS, &file.scene),
             (LITERAL_SEED, Method::LITERAL, LITERAL_OPTIONS, &file.scene),
-            (NO_SHADOW_RAYS, Method::DEFAULT, Options::DEFAULT, unshadowed),
+            (
+                NO_SHADOW_RAYS,
+                Method::TARGET_DEFAULT,
+                Options::DEFAULT,
+                unshadowed,
+            ),
         ];
         for (label, method, options, scene) in cases {
             let render = Render::new(scene, &file.camera)
@@ -314,14 +316,14 @@ ratio within a round",
         };
         println!(
             "\n{scene}: {DEFAULT} = {} (span culling, any-hit shadow rays) {default:.2} ns/pixel",
-            Method::DEFAULT
+            Method::TARGET_DEFAULT
         );
         println!("  traced literally (no culling, closest-hit shadow rays):");
         println!(
             "  {:14} {:28} {:>10} {:>9}  quartiles",
             "", "method", "ns/pixel", "speed-up"
         );
-        for (label, method) in [(LITERAL, Method::DEFAULT), (LITERAL_SEED, Method::LITERAL)] {
+        for (label, method) in [(LITERAL, Method::TARGET_DEFAULT), (LITERAL_SEED, Method::LITERAL)] {
             if let (Some(v), Some((r, lo, hi))) = (
                 round_ns(rounds, scene, label),
                 round_ratio(rounds, scene, label, DEFAULT),
@@ -405,11 +407,11 @@ fn stage<const L: usize, const P: usize, const D: usize>(
     }
     let settings = full.settings();
     scene
-        .set_settings(Settings {
-            shadows: settings.shadows && stage >= Stage::Shadows,
-            max_depth: if mirrors { settings.max_depth } else { 0 },
-            ..settings
-        })
+        .set_settings(
+            settings
+                .with_shadows(settings.shadows && stage >= Stage::Shadows)
+                .with_max_depth(if mirrors { settings.max_depth } else { 0 }),
+        )
         .unwrap_or_else(fail);
     scene
 }
@@ -442,7 +444,7 @@ fn print_ratios() {
         println!("  {:34} {:>10} {:>9}", "method", "ns/pixel", "speed-up");
         for label in Method::ALL.iter().map(|m| m.to_string()) {
             if let Some(v) = median(scene, &label) {
-                let mark = if label == Method::DEFAULT.to_string() {
+                let mark = if label == Method::TARGET_DEFAULT.to_string() {
                     "  (default)"
                 } else {
                     ""

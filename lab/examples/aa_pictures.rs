@@ -31,7 +31,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_graphics_simulator::{BinaryColorTheme, OutputSettingsBuilder, SimulatorDisplay};
 use embedded_raytracer::dither::DitherExt;
-use embedded_raytracer::{Camera, CameraParams, Render, Sampling, Scene};
+use embedded_raytracer::{Camera, Render, Sampling, Scene};
 
 use embedded_raytracer_lab::standard;
 
@@ -147,11 +147,11 @@ impl Picture {
 
 /// The scene file's camera at `size` (same vertical field of view).
 fn resized(camera: &Camera, size: Size) -> Camera {
-    Camera::from_params(CameraParams {
-        size,
-        ..*camera.params()
-    })
-    .expect("the standard scenes' cameras are valid at the pictures' sizes")
+    camera
+        .params()
+        .with_size(size)
+        .build()
+        .expect("the standard scenes' cameras are valid at the pictures' sizes")
 }
 
 /// `scene` drawn with `sampling` on an `Rgb565` display.

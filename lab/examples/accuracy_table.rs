@@ -71,7 +71,7 @@ fn feature_scenes_table(out: &mut String) -> Result<(), scene_file::SceneFileErr
             };
             out.push_str(&format!(
                 "| {name} | {method}{} | {} | {} | {} | {} | {:.4} | {:.4} | {coverage} | {} |\n",
-                if method == Method::DEFAULT {
+                if method == Method::TARGET_DEFAULT {
                     " (default)"
                 } else {
                     ""
@@ -270,7 +270,7 @@ fn scenes_table(out: &mut String) -> Result<(), scene_file::SceneFileError> {
             let m = reference::compare(&render, &truth);
             out.push_str(&format!(
                 "| {name} | {method}{} | {} | {:.2e} | {} | {:.4} | {:.4} | {} |\n",
-                if method == Method::DEFAULT {
+                if method == Method::TARGET_DEFAULT {
                     " (default)"
                 } else if method.arithmetic == Arithmetic::Integer && render.arithmetic() == Arithmetic::F32 {
                     " (rule: f32)"

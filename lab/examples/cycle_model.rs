@@ -321,7 +321,7 @@ fn table(args: &[String]) -> Result<(), ModelError> {
     println!("|---|{}", "---:|".repeat(SCENES.len()));
     for method in Method::ALL {
         let name = method.to_string();
-        let mark = if method == Method::DEFAULT {
+        let mark = if method == Method::TARGET_DEFAULT {
             " (default)"
         } else {
             ""
@@ -336,7 +336,7 @@ fn table(args: &[String]) -> Result<(), ModelError> {
         println!("| `{name}`{mark} | {} |", cells.join(" | "));
     }
 
-    let default = Method::DEFAULT.to_string();
+    let default = Method::TARGET_DEFAULT.to_string();
     let Some(e) = find("lab", &default) else {
         return Err(ModelError(format!("{path}: no estimate for lab {default}")));
     };

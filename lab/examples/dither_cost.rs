@@ -19,7 +19,7 @@ use embedded_graphics::{pixelcolor::BinaryColor, prelude::*};
 use embedded_graphics_simulator::SimulatorDisplay;
 use embedded_raytracer::{
     dither::{Bayer, DitherExt},
-    scene_file, Camera, CameraParams, Render,
+    scene_file, Render,
 };
 
 const ROUNDS: usize = 15;
@@ -31,11 +31,12 @@ fn main() -> Result<(), String> {
         .unwrap_or_else(|| "scenes/lab.toml".into());
     let file = scene_file::load::<MAX_SPHERES, 0, 0, 0>(&path).map_err(|e| e.to_string())?;
     let size = Size::new(128, 64);
-    let camera = Camera::from_params(CameraParams {
-        size,
-        ..*file.camera.params()
-    })
-    .map_err(|e| e.to_string())?;
+    let camera = file
+        .camera
+        .params()
+        .with_size(size)
+        .build()
+        .map_err(|e| e.to_string())?;
     let mut display = SimulatorDisplay::<BinaryColor>::new(size);
 
     let mut times = [[0f64; ROUNDS]; 3];

@@ -172,7 +172,7 @@ fn main() -> ExitCode {
     let default = output
         .default
         .clone()
-        .unwrap_or_else(|| Method::DEFAULT.to_string());
+        .unwrap_or_else(|| Method::TARGET_DEFAULT.to_string());
     let integer_measured = output
         .entries
         .iter()
@@ -265,7 +265,7 @@ fn main() -> ExitCode {
 /// `scenes::FEATURE_RENDERS`, with `lab`'s default for scale; the default method's
 /// estimated cycles per pixel and frame rates where `cycles` has its estimate.
 fn feature_table(output: &QemuOutput, cycles: &[CycleEstimate]) {
-    let default = Method::DEFAULT.to_string();
+    let default = Method::TARGET_DEFAULT.to_string();
     println!(
         "\nThe scenes with lights, a floor and mirrors at 240×240 (`PixelHash` sink included), \
          `lab` for scale. Estimated cycles (`bash .ci/cycles --update`, the default method only) and \

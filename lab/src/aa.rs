@@ -15,7 +15,7 @@ use embedded_raytracer::{Camera, Render, Sampling, Scene};
 
 /// The largest image width measured: adaptive sampling's row buffer
 /// (`sampling::ADAPTIVE_MAX_WIDTH`; a wider image samples every pixel).
-pub const MAX_WIDTH: u32 = embedded_raytracer::sampling::ADAPTIVE_MAX_WIDTH as u32;
+pub const MAX_WIDTH: u32 = embedded_raytracer::ADAPTIVE_MAX_WIDTH as u32;
 
 /// Rays per pixel side of the reference (`n × n` rays, box filter, linear light): the
 /// README's figures.
@@ -31,7 +31,7 @@ pub fn capped(camera: &Camera) -> Camera {
     let mut p = *camera.params();
     let height = (u64::from(size.height) * u64::from(MAX_WIDTH) / u64::from(size.width)) as u32;
     p.size = Size::new(MAX_WIDTH, height.max(1));
-    Camera::from_params(p).expect("a smaller image of a valid camera is valid")
+    p.build().expect("a smaller image of a valid camera is valid")
 }
 
 /// Colours and rays of every pixel, row-major.

@@ -43,7 +43,7 @@ pub struct QemuOutput {
     pub sqrt: Option<(u64, u64)>,
     /// `(pixels, instructions)` of the sink alone.
     pub sink: Option<(u64, u64)>,
-    /// The firmware's `Method::DEFAULT` (its `default METHOD` line).
+    /// The firmware's `Method::TARGET_DEFAULT` (its `default METHOD` line).
     pub default: Option<String>,
     /// The final `result ok` line was printed.
     pub ok: bool,

@@ -40,10 +40,10 @@ use std::vec::Vec;
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
-use embedded_raytracer::camera::{Camera, CameraParams};
-use embedded_raytracer::render::{Render, Sample};
-use embedded_raytracer::scene::Scene;
-use embedded_raytracer::vec3::Vec3;
+use embedded_raytracer::Scene;
+use embedded_raytracer::Vec3;
+use embedded_raytracer::{Camera, CameraParams};
+use embedded_raytracer::{Render, Sample};
 
 pub mod aa;
 pub mod lit;

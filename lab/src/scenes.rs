@@ -221,11 +221,10 @@ pub static SHADOWS: Scene<4, 2, 1, 0> = Scene::from_arrays(
             .with_checker(rgb([70, 70, 80]), 1.0),
     ],
     Rgb888::new(24, 34, 56),
-    Settings {
-        ambient: 0.12,
-        max_depth: 0,
-        shadows: true,
-    },
+    Settings::DEFAULT
+        .with_ambient(0.12)
+        .with_max_depth(0)
+        .with_shadows(true),
 );
 /// The camera of `scenes/shadows.toml`.
 pub const SHADOWS_CAMERA: CameraParams = camera(
@@ -252,11 +251,10 @@ pub static MIRRORS: Scene<5, 1, 1, 3> = Scene::from_arrays(
             .with_material(Material::new(0.0, 32.0, 0.15)),
     ],
     Rgb888::new(110, 150, 210),
-    Settings {
-        ambient: 0.15,
-        max_depth: 3,
-        shadows: true,
-    },
+    Settings::DEFAULT
+        .with_ambient(0.15)
+        .with_max_depth(3)
+        .with_shadows(true),
 );
 /// The camera of `scenes/mirrors.toml`.
 pub const MIRRORS_CAMERA: CameraParams = camera(
@@ -308,11 +306,11 @@ pub fn for_each_feature(work: &mut impl EachScene) {
 /// - `direct/auto/exact+epsilon`: the default with the textbook fixed epsilon for
 ///   secondary rays (`SecondaryOrigin::TEXTBOOK`).
 pub const FEATURE_RENDERS: [(Method, &str, Options); 4] = [
-    (Method::DEFAULT, "", Options::DEFAULT),
-    (Method::DEFAULT, "+literal", LITERAL_OPTIONS),
+    (Method::TARGET_DEFAULT, "", Options::DEFAULT),
+    (Method::TARGET_DEFAULT, "+literal", LITERAL_OPTIONS),
     (Method::LITERAL, "+literal", LITERAL_OPTIONS),
     (
-        Method::DEFAULT,
+        Method::TARGET_DEFAULT,
         "+epsilon",
         Options::DEFAULT.with_secondary(SecondaryOrigin::TEXTBOOK),
     ),

@@ -2,8 +2,8 @@
 //! construction error.
 
 use embedded_graphics::geometry::Size;
-use embedded_raytracer::camera::{MAX_FOV, MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
 use embedded_raytracer::{Camera, CameraError, CameraParam, CameraParams, Vec3};
+use embedded_raytracer::{MAX_FOV, MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
 
 fn close(a: Vec3, b: Vec3, tol: f32) -> bool {
     (a - b).length() <= tol

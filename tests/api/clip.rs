@@ -122,7 +122,7 @@ fn pinned_cases_where_the_clip_used_to_move_pixels() {
         check_clip(
             &scene,
             &camera,
-            Method::DEFAULT,
+            Method::TARGET_DEFAULT,
             Point::zero(),
             size,
             full_width(x0, size),

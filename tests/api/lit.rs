@@ -179,11 +179,7 @@ fn at_max_depth_the_background_stands_in_for_the_reflection() {
                 .with_material(Material::new(0.0, 32.0, reflect)),
         )
         .unwrap();
-        s.set_settings(Settings {
-            max_depth: 0,
-            ..Settings::DEFAULT
-        })
-        .unwrap();
+        s.set_settings(Settings::DEFAULT.with_max_depth(0)).unwrap();
         let mut c = None;
         Render::<1, Rgb888, 0, 0, 1>::new(&s, &camera).trace(|p| {
             if p.pixel == Point::new(4, 4) {
@@ -261,11 +257,12 @@ fn shadows_follow_the_segment_rule() {
         s.push_plane(Plane::new(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), grey))
             .unwrap();
         s.push_light(light).unwrap();
-        s.set_settings(Settings {
-            ambient: 0.1,
-            shadows,
-            max_depth: 0,
-        })
+        s.set_settings(
+            Settings::DEFAULT
+                .with_ambient(0.1)
+                .with_shadows(shadows)
+                .with_max_depth(0),
+        )
         .unwrap();
         s
     };
@@ -313,11 +310,7 @@ fn eye_inside_a_mirror_sphere() {
     )
     .unwrap();
     s.push_light(Light::point(Vec3::new(1.0, 2.0, 0.0), 1.0)).unwrap();
-    s.set_settings(Settings {
-        max_depth: 4,
-        ..Settings::DEFAULT
-    })
-    .unwrap();
+    s.set_settings(Settings::DEFAULT.with_max_depth(4)).unwrap();
     let camera = Camera::new(
         Vec3::new(0.0, 0.0, 2.0),
         Vec3::ZERO,
@@ -376,10 +369,7 @@ fn scene_errors() {
         Err(SceneError::TooManyPlanes { capacity: 1 })
     );
     assert!(matches!(
-        deep.set_settings(Settings {
-            ambient: -0.1,
-            ..Settings::DEFAULT
-        }),
+        deep.set_settings(Settings::DEFAULT.with_ambient(-0.1)),
         Err(SceneError::Settings(SettingsError::Ambient))
     ));
 }
@@ -443,10 +433,7 @@ fn culling_changes_no_pixel_on_random_lit_scenes() {
             s.push_light(light).unwrap();
         }
         if case % 4 == 3 {
-            let settings = Settings {
-                shadows: false,
-                ..s.settings()
-            };
+            let settings = s.settings().with_shadows(false);
             s.set_settings(settings).unwrap();
         }
         let eye = Vec3::new(

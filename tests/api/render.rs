@@ -93,7 +93,7 @@ fn ascii_art_every_method() {
 
 #[test]
 fn shading_is_lab1() {
-    let display = render_rgb888(Method::DEFAULT);
+    let display = render_rgb888(Method::TARGET_DEFAULT);
     // Row 7/8 around column 8 faces the eye almost head-on; the rim is darker but
     // never below 0.3 × 255 = 77 (rounded).
     let centre = display.get_pixel(Point::new(8, 8)).unwrap();
@@ -108,7 +108,7 @@ fn shading_is_lab1() {
 #[test]
 fn other_colour_formats_convert_from_rgb888() {
     let cam = camera();
-    let reference = render_rgb888(Method::DEFAULT);
+    let reference = render_rgb888(Method::TARGET_DEFAULT);
 
     let mut rgb565 = MockDisplay::<Rgb565>::new();
     Render::new(&SCENE, &cam).draw(&mut rgb565).unwrap();
@@ -145,7 +145,7 @@ fn shifted(full: &MockDisplay<Rgb888>, offset: Point) -> MockDisplay<Rgb888> {
 
 #[test]
 fn offset_renders_into_a_sub_rectangle() {
-    let full = render_rgb888(Method::DEFAULT);
+    let full = render_rgb888(Method::TARGET_DEFAULT);
     let cam = camera();
     let offset = Point::new(30, 20);
     let mut display = MockDisplay::new();
@@ -240,7 +240,7 @@ fn one_fill_contiguous_per_row() {
 #[test]
 fn trace_sees_what_draw_draws() {
     let cam = camera();
-    let display = render_rgb888(Method::DEFAULT);
+    let display = render_rgb888(Method::TARGET_DEFAULT);
     let mut count = 0;
     Render::<2>::new(&SCENE, &cam).trace(|s| {
         count += 1;
@@ -294,7 +294,7 @@ fn targets_reaching_past_i32_max_are_clipped_to_representable_coordinates() {
         }
     }
     let cam = camera();
-    let full = render_rgb888(Method::DEFAULT);
+    let full = render_rgb888(Method::TARGET_DEFAULT);
     let corner = Point::new(i32::MAX - 5, i32::MAX - 3);
     let mut target = Edge {
         area: Rectangle::new(corner, Size::new(100, 100)),

@@ -6,10 +6,10 @@
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
-use embedded_raytracer::intersect::{AUTO_FD_CAPACITY, FD_ANCHOR_INTERVAL};
 use embedded_raytracer::{
     Camera, Light, Method, Options, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3,
 };
+use embedded_raytracer::{AUTO_FD_CAPACITY, FD_ANCHOR_INTERVAL};
 
 use crate::common;
 use common::{load, random_case, shrink, Rng, Traced, SCENES};
@@ -344,7 +344,7 @@ fn default_method_matches_robust_within_one_level() {
         } else {
             file.camera
         };
-        let default = trace_method(&file.scene, &camera, Method::DEFAULT);
+        let default = trace_method(&file.scene, &camera, Method::TARGET_DEFAULT);
         let robust = trace_method(
             &file.scene,
             &camera,
@@ -365,7 +365,7 @@ fn clipped_draw_matches_the_full_render() {
     let lab = load("lab");
     let camera = shrink(&lab.camera, 60, 40);
     for method in [
-        Method::DEFAULT,
+        Method::TARGET_DEFAULT,
         Method::LITERAL,
         Method::new(Stepping::Incremental, SphereTest::ForwardDiff, Sqrt::Fast),
     ] {

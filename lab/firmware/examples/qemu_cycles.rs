@@ -115,7 +115,7 @@ mod fw {
         target: &mut PixelHash,
     ) {
         let Ok(()) = Render::new(scene, camera)
-            .with_method(Method::DEFAULT)
+            .with_method(Method::TARGET_DEFAULT)
             .draw(target);
     }
 
@@ -234,7 +234,7 @@ mod fw {
             cycle_region_begin();
             render_default(scene, &camera, &mut hash);
             cycle_region_end();
-            print_region(name, Method::DEFAULT, &hash);
+            print_region(name, Method::TARGET_DEFAULT, &hash);
             self.failed |= hash.pixels() != u64::from(SIZE.width) * u64::from(SIZE.height);
         }
     }
@@ -302,7 +302,9 @@ mod fw {
                 scenes::for_each(&mut renders);
                 !renders.failed
             }
-            Selection::Quick => render_scene("lab", &scenes::LAB, scenes::LAB_CAMERA, &[Method::DEFAULT]),
+            Selection::Quick => {
+                render_scene("lab", &scenes::LAB, scenes::LAB_CAMERA, &[Method::TARGET_DEFAULT])
+            }
             Selection::Features => true,
         };
         if selection != Selection::Quick {
@@ -311,7 +313,7 @@ mod fw {
             ok &= !renders.failed;
         }
         if selection != Selection::Features {
-            ok = render_bands("lab", &scenes::LAB, scenes::LAB_CAMERA, Method::DEFAULT) && ok;
+            ok = render_bands("lab", &scenes::LAB, scenes::LAB_CAMERA, Method::TARGET_DEFAULT) && ok;
         }
         if ok {
             hprintln!("result ok");

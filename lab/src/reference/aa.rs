@@ -10,8 +10,8 @@ use std::vec::Vec;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
 use super::{lit, trace_ray, RefCamera, RefSphere, D3};
-use embedded_raytracer::camera::Camera;
-use embedded_raytracer::scene::Scene;
+use embedded_raytracer::Camera;
+use embedded_raytracer::Scene;
 
 /// An 8-bit sRGB level in linear light, `[0, 1]`.
 #[must_use]

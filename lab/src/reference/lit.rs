@@ -74,8 +74,8 @@ use std::vec::Vec;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
 use super::{intersect, sphere_doubt, why, RayHit, RefCamera, RefPixel, D3};
-use embedded_raytracer::light::Light;
-use embedded_raytracer::scene::Scene;
+use embedded_raytracer::Light;
+use embedded_raytracer::Scene;
 
 /// `f32`'s unit roundoff, `2⁻²⁴`.
 pub const UNIT_ROUNDOFF_F32: f64 = 1.0 / 16_777_216.0;
@@ -220,7 +220,7 @@ pub fn plane_basis(n: D3) -> Option<(D3, D3)> {
     Some((e1, n.cross(e1)))
 }
 
-fn material(m: &embedded_raytracer::material::Material, mirrors: bool) -> RefMaterial {
+fn material(m: &embedded_raytracer::Material, mirrors: bool) -> RefMaterial {
     RefMaterial {
         specular: f64::from(m.specular),
         shininess: f64::from(m.shininess),

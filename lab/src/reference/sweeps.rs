@@ -10,23 +10,23 @@ use embedded_graphics::geometry::Size;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
 use super::{compare, intersect, render, render_params, Metrics, ReferenceImage, D3};
-use embedded_raytracer::camera::{Camera, CameraParams, MIN_PIXEL_SIZE};
-use embedded_raytracer::error::CameraError;
-use embedded_raytracer::light::Light;
-use embedded_raytracer::material::Material;
-use embedded_raytracer::method::{Method, SphereTest, Sqrt, Stepping};
-use embedded_raytracer::plane::Plane;
-use embedded_raytracer::render::{Options, Render};
-use embedded_raytracer::scene::{Scene, Settings};
-use embedded_raytracer::sphere::Sphere;
-use embedded_raytracer::vec3::Vec3;
+use embedded_raytracer::CameraError;
+use embedded_raytracer::Light;
+use embedded_raytracer::Material;
+use embedded_raytracer::Plane;
 use embedded_raytracer::SecondaryOrigin;
+use embedded_raytracer::Sphere;
+use embedded_raytracer::Vec3;
+use embedded_raytracer::{Camera, CameraParams, MIN_PIXEL_SIZE};
+use embedded_raytracer::{Method, SphereTest, Sqrt, Stepping};
+use embedded_raytracer::{Options, Render};
+use embedded_raytracer::{Scene, Settings};
 
 /// The six sphere-test × square-root combinations, with [`Stepping::Direct`] so the
 /// stepping adds no error of its own.
 #[must_use]
 pub fn sphere_methods() -> [Method; 6] {
-    let mut out = [Method::DEFAULT; 6];
+    let mut out = [Method::TARGET_DEFAULT; 6];
     let tests = [SphereTest::Algebraic, SphereTest::Geometric, SphereTest::Robust];
     let sqrts = [Sqrt::Exact, Sqrt::Fast];
     for (k, slot) in out.iter_mut().enumerate() {
@@ -530,10 +530,7 @@ pub fn without_shadows<const N: usize, const L: usize, const P: usize, const D: 
 ) -> Scene<N, L, P, D> {
     let mut out = scene.clone();
     // The scene's own settings with one flag changed: valid as they were.
-    let _ = out.set_settings(Settings {
-        shadows: false,
-        ..scene.settings()
-    });
+    let _ = out.set_settings(scene.settings().with_shadows(false));
     out
 }
 
@@ -613,7 +610,14 @@ pub fn lit_points<const N: usize, const L: usize, const P: usize, const D: usize
         out.push(LitPoint {
             x,
             secondary,
-            errors: lit_errors(scene, camera, &truth, &unshadowed, Method::DEFAULT, secondary),
+            errors: lit_errors(
+                scene,
+                camera,
+                &truth,
+                &unshadowed,
+                Method::TARGET_DEFAULT,
+                secondary,
+            ),
         });
     }
 }
@@ -763,12 +767,7 @@ pub fn contact_sweep(scales: &[f64]) -> Vec<LitPoint> {
 #[must_use]
 pub fn mirror_inside_scene(k: f32, size: Size) -> Option<(Scene<2, 1, 0, 8>, Camera)> {
     let mut scene: Scene<2, 1, 0, 8> = Scene::new(Rgb888::BLACK);
-    scene
-        .set_settings(Settings {
-            max_depth: 8,
-            ..Settings::DEFAULT
-        })
-        .ok()?;
+    scene.set_settings(Settings::DEFAULT.with_max_depth(8)).ok()?;
     scene
         .push(
             Sphere::new(Vec3::ZERO, 5.0 * k, Rgb888::new(200, 200, 200))
@@ -972,7 +971,7 @@ pub fn integer_sweep(kind: IntegerSweep) -> Vec<IntegerPoint> {
         let metrics = compare(&kernel, &render(scene, &camera));
         Some(IntegerPoint {
             value,
-            integer: kernel.arithmetic() == embedded_raytracer::method::Arithmetic::Integer,
+            integer: kernel.arithmetic() == embedded_raytracer::Arithmetic::Integer,
             metrics,
         })
     };

@@ -10,10 +10,10 @@ use core::convert::Infallible;
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
-use embedded_raytracer::camera::{MAX_FOV, MAX_RESOLUTION};
 use embedded_raytracer::{
     scene_file, CameraError, CameraParams, Method, Render, Scene, SceneError, Sphere, SphereError, Vec3,
 };
+use embedded_raytracer::{MAX_FOV, MAX_RESOLUTION};
 use embedded_raytracer_lab::reference;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};

@@ -38,10 +38,7 @@ fn level(x: f64) -> u8 {
     (x + 0.5).floor() as u8
 }
 
-const NO_SHADOW: Settings = Settings {
-    shadows: false,
-    ..Settings::DEFAULT
-};
+const NO_SHADOW: Settings = Settings::DEFAULT.with_shadows(false);
 
 #[test]
 fn lit_sphere_brightest_pixel_is_the_formula() {
@@ -224,10 +221,7 @@ fn mirror_scene<const D: usize>(r: f32, mirror: Rgb888, max_depth: u8) -> Scene<
             Plane::new(v(0.0, -1.0, 0.0), v(0.0, 1.0, 0.0), Rgb888::new(200, 100, 40)),
         ],
         Rgb888::new(100, 50, 20),
-        Settings {
-            max_depth,
-            ..Settings::DEFAULT
-        },
+        Settings::DEFAULT.with_max_depth(max_depth),
     )
 }
 
@@ -407,10 +401,7 @@ fn mirrors_scene() -> Scene<3, 2, 1, 3> {
         LIGHTS,
         [floor(0.2)],
         Rgb888::new(20, 30, 60),
-        Settings {
-            max_depth: 3,
-            ..Settings::DEFAULT
-        },
+        Settings::DEFAULT.with_max_depth(3),
     )
 }
 
@@ -527,10 +518,7 @@ fn grazed_by_the_reflection(r: f32, x: f32) -> Scene<1, 0, 2, 1> {
             Plane::new(v(0.0, -1.0, 0.0), v(0.0, 1.0, 0.0), Rgb888::new(200, 100, 40)),
         ],
         Rgb888::new(100, 50, 20),
-        Settings {
-            max_depth: 1,
-            ..Settings::DEFAULT
-        },
+        Settings::DEFAULT.with_max_depth(1),
     )
 }
 
@@ -626,10 +614,7 @@ fn band_stays_narrow_with_the_eye_inside_a_mirror_sphere() {
         [Light::point(v(0.0, 3.0, 1.0), 0.8)],
         [],
         Rgb888::BLACK,
-        Settings {
-            max_depth: 8,
-            ..Settings::DEFAULT
-        },
+        Settings::DEFAULT.with_max_depth(8),
     );
     let camera = Camera::new(
         v(0.0, 0.0, 3.0),

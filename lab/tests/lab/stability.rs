@@ -6,11 +6,11 @@
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
-use embedded_raytracer::camera::{MAX_FOV, MIN_PIXEL_SIZE};
 use embedded_raytracer::{
     Camera, CameraError, CameraParam, CameraParams, Method, Render, Scene, Sphere, SphereTest, Sqrt,
     Stepping, Vec3,
 };
+use embedded_raytracer::{MAX_FOV, MIN_PIXEL_SIZE};
 use embedded_raytracer_lab::reference::sweeps::{self, *};
 use embedded_raytracer_lab::reference::{self, intersect, D3};
 
@@ -275,7 +275,7 @@ fn eye_inside_sees_the_exit() {
         Size::new(32, 24),
     )
     .unwrap();
-    let x = measure(&scene, &camera, Method::DEFAULT);
+    let x = measure(&scene, &camera, Method::TARGET_DEFAULT);
     assert_eq!(
         (x.coverage_errors, x.agreeing_hits, x.shade_max),
         (0, 32 * 24, 0),
@@ -360,7 +360,7 @@ fn touching_and_interpenetrating_spheres() {
     let f = load("grazing");
     let truth = reference::render(&f.scene, &f.camera);
     for method in [
-        Method::DEFAULT,
+        Method::TARGET_DEFAULT,
         m(Stepping::Direct, SphereTest::Robust, Sqrt::Exact),
         m(Stepping::Direct, SphereTest::Algebraic, Sqrt::Exact),
         m(Stepping::Direct, SphereTest::Geometric, Sqrt::Exact),
@@ -391,7 +391,7 @@ fn touching_and_interpenetrating_spheres() {
     .unwrap();
     let truth = reference::render(&scene, &camera);
     assert_eq!(truth.undecidable(), 1);
-    let x = measure(&scene, &camera, Method::DEFAULT);
+    let x = measure(&scene, &camera, Method::TARGET_DEFAULT);
     assert_eq!((x.undecidable, x.coverage_errors), (1, 0), "{x:?}");
 }
 
@@ -621,7 +621,7 @@ fn fov_near_its_limits() {
     );
 
     let camera = base(MAX_FOV).build().unwrap();
-    for method in [Method::DEFAULT, direct(SphereTest::Robust, Sqrt::Exact)] {
+    for method in [Method::TARGET_DEFAULT, direct(SphereTest::Robust, Sqrt::Exact)] {
         let x = measure(&scene, &camera, method);
         assert_eq!(x.coverage_errors, 0, "{method} at 179°: {x:?}");
         assert!(x.shade_max <= 1 && x.drift_max < 1e-3, "{method} at 179°: {x:?}");
@@ -699,7 +699,7 @@ fn standard_scene(name: &str) {
     let best = run(direct(SphereTest::Robust, Sqrt::Exact));
     assert_eq!(best.coverage_errors, 0, "{name} direct/robust/exact: {best:?}");
     assert!(best.shade_max <= 1, "{name} direct/robust/exact: {best:?}");
-    let best = run(Method::DEFAULT);
+    let best = run(Method::TARGET_DEFAULT);
     assert_eq!(best.coverage_errors, 0, "{name} default: {best:?}");
     assert!(best.shade_max <= 1, "{name} default: {best:?}");
     let incremental = run(Method::new(

@@ -53,7 +53,7 @@ fn usage() -> String {
 [--sampling center|grid:N|adaptive:N] (default method {}, sampling {}, secondary {})",
         standard::method_flags(),
         Arithmetic::NAMES.join("|"),
-        Method::DEFAULT,
+        Method::TARGET_DEFAULT,
         Sampling::Center,
         secondary_name(Options::DEFAULT.secondary)
     )
@@ -82,10 +82,7 @@ fn parse_secondary(text: &str) -> Result<SecondaryOrigin, String> {
 
 /// The `--secondary` value that selects `secondary` (`convex`, `epsilon:0.001`).
 fn secondary_name(secondary: SecondaryOrigin) -> String {
-    match secondary {
-        SecondaryOrigin::Convex => "convex".to_string(),
-        SecondaryOrigin::Epsilon(eps) => format!("epsilon:{eps}"),
-    }
+    secondary.to_string()
 }
 
 /// The rest of `--help` after the usage line. The worst case was measured with
@@ -98,11 +95,11 @@ mirrors (scenes/shadows.toml, scenes/mirrors.toml) are drawn when the file has t
   --output, -o OUT   the PNG (default: the scene's name with .png, in the current directory)
   --force            replace a read-only output
   --stepping, --sphere-test, --sqrt
-                     the render method (default: the crate's Method::DEFAULT)
+                     the render method (default: the crate's Method::TARGET_DEFAULT)
   --arithmetic f32|integer
                      integer: the integer kernel where its per-frame rule takes the
                      frame (spheres only, square pixels, within its range limits),
-                     else the f32 method above; without the flag Method::DEFAULT's
+                     else the f32 method above; without the flag Method::TARGET_DEFAULT's
                      (f32 on this host). The summary says which one drew the frame
   --secondary convex|epsilon:VALUE
                      where shadow and reflection rays start: convex (default; no

@@ -72,7 +72,7 @@ fn renders_the_lab_scene_to_a_png() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("320x240"), "{stdout}");
-    let default = embedded_raytracer::Method::DEFAULT.to_string();
+    let default = embedded_raytracer::Method::TARGET_DEFAULT.to_string();
     assert!(stdout.contains(&default), "{stdout}");
     assert!(stdout.contains("ns/pixel"), "{stdout}");
     let (w, h, depth, colour_type) = png_header(&std::fs::read(&out).unwrap());
@@ -960,7 +960,7 @@ fn memory_does_not_grow_with_the_height() {
 /// eye (so span culling removes none).
 #[test]
 fn the_measured_worst_case_is_the_worst_accepted_scene() {
-    use embedded_raytracer::camera::MAX_RESOLUTION;
+    use embedded_raytracer::MAX_RESOLUTION;
     let path = Path::new(ROOT).join("docs/cli_worst_case.toml");
     let file = embedded_raytracer::scene_file::load::<256, 0, 0, 0>(&path).unwrap();
     assert_eq!(
@@ -1187,7 +1187,7 @@ fn arithmetic_flag() {
         summary.contains("method direct/auto/exact, arithmetic f32,"),
         "{summary}"
     );
-    assert!(default == traced("scenes/lab.toml", Method::DEFAULT));
+    assert!(default == traced("scenes/lab.toml", Method::TARGET_DEFAULT));
     let (summary, integer) = png("scenes/lab.toml", &["--arithmetic", "integer"]);
     assert!(
         summary.contains("method integer/direct/auto/exact, arithmetic integer,"),

@@ -552,7 +552,7 @@ impl App {
     fn new(args: &Args) -> Result<Self, String> {
         let (scene, base) = Loaded::load(&args.scene)?;
         let size = args.size.unwrap_or(base.size);
-        let camera = Camera::from_params(CameraParams { size, ..base }).map_err(|e| {
+        let camera = base.with_size(size).build().map_err(|e| {
             format!(
                 "{}: --size {}x{}: {e}",
                 args.scene.display(),
@@ -597,7 +597,7 @@ impl App {
 
     /// Rebuilds the camera from the orbit; an invalid one keeps the previous camera.
     fn update_camera(&mut self) {
-        match Camera::from_params(self.orbit.params(&self.base, self.size)) {
+        match self.orbit.params(&self.base, self.size).build() {
             Ok(camera) => self.camera = camera,
             Err(e) => eprintln!("camera: {e} (keeping the previous view)"),
         }
@@ -760,10 +760,12 @@ impl App {
                     self.dirty = true;
                 }
                 Keycode::I => {
-                    self.view.method.arithmetic = match self.view.method.arithmetic {
-                        Arithmetic::F32 => Arithmetic::Integer,
-                        Arithmetic::Integer => Arithmetic::F32,
+                    let next = if self.view.method.arithmetic == Arithmetic::F32 {
+                        Arithmetic::Integer
+                    } else {
+                        Arithmetic::F32
                     };
+                    self.view.method = self.view.method.with_arithmetic(next);
                     self.dirty = true;
                 }
                 Keycode::E => {
@@ -877,6 +879,7 @@ fn secondary_label(secondary: SecondaryOrigin) -> String {
     match secondary {
         SecondaryOrigin::Convex => "convex".to_string(),
         SecondaryOrigin::Epsilon(eps) => format!("eps={eps:e}"),
+        other => other.to_string(),
     }
 }
 
@@ -1038,7 +1041,7 @@ mod tests {
         app.handle(key(Keycode::I));
         assert_eq!(
             app.view.method,
-            Method::DEFAULT.with_arithmetic(Arithmetic::Integer)
+            Method::TARGET_DEFAULT.with_arithmetic(Arithmetic::Integer)
         );
         let integer_frame = shade(&app.scene, &app.camera, &app.view, app.view.method).pixels;
         assert!(
@@ -1050,7 +1053,7 @@ mod tests {
             Arithmetic::Integer
         );
         app.handle(key(Keycode::I));
-        assert_eq!(app.view.method, Method::DEFAULT);
+        assert_eq!(app.view.method, Method::TARGET_DEFAULT);
     }
 
     #[test]
@@ -1063,7 +1066,7 @@ mod tests {
         }
         assert_eq!(
             app.view.method,
-            Method::DEFAULT,
+            Method::TARGET_DEFAULT,
             "back to the start after a full cycle"
         );
         assert!(Method::ALL.iter().all(|m| seen.contains(m)));
@@ -1354,6 +1357,6 @@ mod tests {
         let mut o = Orbit::default();
         o.tilt(&base, 10.0);
         assert!((o.elevation - MAX_ELEVATION).abs() < 1e-6);
-        assert!(Camera::from_params(o.params(&base, base.size)).is_ok());
+        assert!(o.params(&base, base.size).build().is_ok());
     }
 }

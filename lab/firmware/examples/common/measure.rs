@@ -265,7 +265,7 @@ impl<P: Platform> Run<P> {
         ));
         platform.describe_counter(overhead);
         // The default method's name, so tools can pick its lines (e.g. no_panic's hash).
-        platform.print(format_args!("default {}", Method::DEFAULT));
+        platform.print(format_args!("default {}", Method::TARGET_DEFAULT));
         Run {
             platform,
             overhead,

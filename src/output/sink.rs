@@ -8,15 +8,9 @@ use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
-use crate::render::Sample;
-use crate::scanline::{ColorRuns, PixelRow};
-
-/// A consumer of rows: the pixels of `area` (one row, left to right), pulled from the
-/// scanline loop's row as samples or as colour runs.
-pub(crate) trait RowSink {
-    type Error;
-    fn row<R: PixelRow>(&mut self, area: Rectangle, row: R) -> Result<(), Self::Error>;
-}
+use crate::trace::options::Sample;
+use crate::trace::scanline::RowSink;
+use crate::trace::scanline::{ColorRuns, PixelRow};
 
 /// Rows into a `DrawTarget`, colours converted to its colour type.
 pub(crate) struct DrawSink<'t, D, C> {

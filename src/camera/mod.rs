@@ -8,13 +8,15 @@
 //! p(i,j) − eye = w + ((i + ½) − W/2)·pw·u + (H/2 − (j + ½))·ph·v
 //! ```
 
+pub(crate) mod span;
+
 use embedded_graphics::geometry::Size;
 
 use crate::error::{CameraError, CameraParam};
 use crate::math;
-use crate::vec3::Vec3;
+use crate::math::vec3::Vec3;
 
-pub use crate::limits::{MAX_FOV, MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
+pub use crate::math::limits::{MAX_FOV, MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
 
 /// What a camera is built from: plain data, `const`-constructible.
 ///
@@ -70,9 +72,23 @@ impl CameraParams {
         self
     }
 
-    /// Validates the parameters and builds the camera; see [`Camera::from_params`].
+    /// The same parameters at another resolution (the field of view kept).
+    #[must_use]
+    pub const fn with_size(mut self, size: Size) -> Self {
+        self.size = size;
+        self
+    }
+
+    /// Validates the parameters and computes the seed's camera set-up: the one way a
+    /// [`Camera`] is made ([`Camera::new`] is this with square pixels).
+    ///
+    /// Errors: any non-finite number ([`CameraError::NotFinite`]); eye = look-at;
+    /// `up` zero or within [`MIN_UP_ANGLE`] of the view direction; a field of view
+    /// outside `(0, MAX_FOV]` or so narrow that a pixel is below [`MIN_PIXEL_SIZE`];
+    /// a zero width or height, or one above [`MAX_RESOLUTION`]. On success every
+    /// stored number is finite.
     pub fn build(self) -> Result<Camera, CameraError> {
-        Camera::from_params(self)
+        Camera::validate(self)
     }
 }
 
@@ -115,17 +131,11 @@ impl Camera {
     /// assert_eq!(err, Err(CameraError::UpParallelToView));
     /// ```
     pub fn new(eye: Vec3, look_at: Vec3, up: Vec3, fov_y: f32, size: Size) -> Result<Self, CameraError> {
-        Self::from_params(CameraParams::new(eye, look_at, up, fov_y, size))
+        CameraParams::new(eye, look_at, up, fov_y, size).build()
     }
 
-    /// Validates `params` and computes the seed's camera set-up.
-    ///
-    /// Errors: any non-finite number ([`CameraError::NotFinite`]); eye = look-at;
-    /// `up` zero or within [`MIN_UP_ANGLE`] of the view direction; a field of view
-    /// outside `(0, MAX_FOV]` or so narrow that a pixel is below [`MIN_PIXEL_SIZE`];
-    /// a zero width or height, or one above [`MAX_RESOLUTION`]. On success every
-    /// stored number is finite.
-    pub fn from_params(params: CameraParams) -> Result<Self, CameraError> {
+    /// [`CameraParams::build`].
+    fn validate(params: CameraParams) -> Result<Self, CameraError> {
         let CameraParams {
             eye,
             look_at,

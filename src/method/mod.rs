@@ -8,40 +8,15 @@
 //! type (see `ARCHITECTURE.md`); every list of names in the CLI usage, the simulator's
 //! key help, the tables and the chart is read from `NAMES`/`ALL`.
 
+pub(crate) mod dispatch;
+pub mod intersect;
+mod query;
+pub(crate) mod stepping;
+
 use core::fmt;
 use core::str::FromStr;
 
-/// A method name (`--stepping`, `--sphere-test`, `--sqrt`) that is not one of the choices.
-///
-/// ```
-/// use embedded_raytracer::{ParseMethodError, Sqrt};
-/// let e = "slow".parse::<Sqrt>().unwrap_err();
-/// assert_eq!(e, ParseMethodError { what: "sqrt", expected: Sqrt::NAMES });
-/// assert_eq!(e.to_string(), "unknown sqrt: expected one of exact, fast");
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ParseMethodError {
-    /// What was being parsed (`stepping`, `sphere test`, `sqrt`).
-    pub what: &'static str,
-    /// The accepted names, in the axis' order; `Display` joins them with `, `.
-    pub expected: &'static [&'static str],
-}
-
-impl fmt::Display for ParseMethodError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "unknown {}: expected one of ", self.what)?;
-        for (k, name) in self.expected.iter().enumerate() {
-            if k > 0 {
-                f.write_str(", ")?;
-            }
-            f.write_str(name)?;
-        }
-        Ok(())
-    }
-}
-
-impl core::error::Error for ParseMethodError {}
+pub use crate::error::ParseMethodError;
 
 /// One axis of the method from its table: `Variant => "kebab-name"` rows, each with
 /// its doc comment.
@@ -55,6 +30,7 @@ macro_rules! axis {
         $(#[$meta])*
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
         #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+        #[non_exhaustive]
         pub enum $ty {
             $( $(#[$vmeta])* $variant, )+
         }
@@ -114,7 +90,7 @@ axis! {
 
 axis! {
     /// Which ray–sphere intersection formula the pixel loop uses (strategy types in
-    /// [`intersect`](crate::intersect)).
+    /// `method/intersect.rs`).
     SphereTest, "sphere test" {
         /// The slides' quadratic (see [`Sphere::intersect_algebraic`](crate::Sphere::intersect_algebraic)).
         Algebraic => "algebraic",
@@ -125,7 +101,7 @@ axis! {
         /// The robust test's discriminant `a·r² − |L × d|²` and `b = L·d`
         /// forward-differenced along each scanline (three additions per sphere and
         /// pixel), re-anchored by direct evaluation at each span start and every
-        /// [`FD_ANCHOR_INTERVAL`](crate::intersect::FD_ANCHOR_INTERVAL) columns. Error
+        /// [`FD_ANCHOR_INTERVAL`](crate::method::intersect::FD_ANCHOR_INTERVAL) columns. Error
         /// bound: a silhouette edge moves by at most `2⁻²⁴·K·(R + 2K)` pixels (`R` the
         /// sphere's radius on screen in pixels, `K` the anchor interval), on top of the
         /// robust test's own error. A single-ray query
@@ -138,7 +114,7 @@ axis! {
         /// The slides' algebraic and geometric tests are never chosen: they are dearer
         /// per pixel than forward differences and fail from distance/radius ≈ 100.
         /// A scene holding more than
-        /// [`AUTO_FD_CAPACITY`](crate::intersect::AUTO_FD_CAPACITY) (32) spheres is
+        /// [`AUTO_FD_CAPACITY`](crate::method::intersect::AUTO_FD_CAPACITY) (32) spheres is
         /// drawn with `Robust` for every sphere, as its render's stack would otherwise
         /// keep the forward differences' constants for each (64 spheres: 6,132 B
         /// instead of 10,256 B on the Cortex-M4F). Single-ray queries behave as
@@ -179,7 +155,7 @@ axis! {
 /// without the hard-float ABI (`thumbv6m-none-eabi`, `thumbv7m-none-eabi`; a Cortex-M4F
 /// built for the soft-float ABI counts too, every `f32` operation being a call there)
 /// and RISC-V without the `F` extension (`riscv32imc-unknown-none-elf`).
-/// [`Method::DEFAULT`] takes the integer kernel there.
+/// [`Method::TARGET_DEFAULT`] takes the integer kernel there.
 pub const FPU_LESS: bool = cfg!(any(
     all(target_arch = "arm", not(target_abi = "eabihf")),
     all(
@@ -214,6 +190,7 @@ pub const FPU_LESS: bool = cfg!(any(
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub struct Method {
     /// Ray stepping.
     pub stepping: Stepping,
@@ -230,20 +207,18 @@ pub struct Method {
 const METHOD_COUNT: usize = Stepping::ALL.len() * SphereTest::ALL.len() * Sqrt::ALL.len();
 
 impl Method {
-    /// The default method (see the type's docs): `direct/auto/exact`, and on a target
-    /// without an FPU ([`FPU_LESS`]) the integer kernel on top of it
-    /// ([`Method::INTEGER`]): measured in QEMU it draws the lab scene in under a third
-    /// of the instructions (Cortex-M0: 359.3 against 1,155.6 per pixel), as exactly
-    /// (README, "On a Cortex-M0 and RV32").
-    pub const DEFAULT: Method = if FPU_LESS {
-        Method::INTEGER
-    } else {
-        Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact)
-    };
+    /// The default on this target, said at the call site: [`Method::F32`] on a target
+    /// with an FPU, [`Method::INTEGER`] on one without ([`FPU_LESS`]), where the
+    /// integer kernel draws the lab scene in under a third of the instructions, as
+    /// exactly (measured in QEMU, Cortex-M0: 359.3 against 1,155.6 per pixel;
+    /// `docs/firmware.md`). `Method::default()` is this.
+    pub const TARGET_DEFAULT: Method = if FPU_LESS { Method::INTEGER } else { Method::F32 };
+
+    /// The default `f32` method (see the type's docs): `direct/auto/exact`.
+    pub const F32: Method = Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact);
 
     /// The integer kernel, `direct/auto/exact` in `f32` where its bounds do not hold.
-    pub const INTEGER: Method =
-        Method::new(Stepping::Direct, SphereTest::Auto, Sqrt::Exact).with_arithmetic(Arithmetic::Integer);
+    pub const INTEGER: Method = Method::F32.with_arithmetic(Arithmetic::Integer);
 
     /// The seed taken literally: world-space stepping, the quadratic, exact root.
     pub const LITERAL: Method = Method::new(Stepping::WorldSpace, SphereTest::Algebraic, Sqrt::Exact);
@@ -274,7 +249,7 @@ impl Method {
     #[allow(clippy::indexing_slicing)]
     pub const ALL: [Method; METHOD_COUNT] = {
         let (nt, nq) = (SphereTest::ALL.len(), Sqrt::ALL.len());
-        let mut all = [Method::DEFAULT; METHOD_COUNT];
+        let mut all = [Method::F32; METHOD_COUNT];
         let mut k = 0;
         while k < METHOD_COUNT {
             all[k] = Method::new(
@@ -290,7 +265,7 @@ impl Method {
 
 impl Default for Method {
     fn default() -> Self {
-        Method::DEFAULT
+        Method::TARGET_DEFAULT
     }
 }
 

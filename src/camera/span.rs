@@ -33,8 +33,8 @@
 //! The same fallback catches any non-finite coefficient.
 
 use crate::camera::Camera;
+use crate::math::vec3::Vec3;
 use crate::math::{max, min};
-use crate::vec3::Vec3;
 
 /// How much a test's rounding can widen its hit set beyond the true silhouette.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -384,7 +384,7 @@ impl Silhouette {
 ///   `m = dy₁₂ − 1` (or `−dy₁₂`) bounds `2¹²·|dy|` from below;
 /// - `q·dy² ≥ ⌊q·2²⁴⌋·m²/2⁴⁸`, floored again to `2⁻³²`, and `h0·(1 + 2⁻¹⁶)` is taken
 ///   rounded up to `2⁻⁸`: an upper bound of `hw²`, rounded up to `2⁻⁶` and its root
-///   up to `2⁻³` ([`isqrt32`](crate::fixed::isqrt32), exact, plus one where not a
+///   up to `2⁻³` ([`isqrt32`](crate::math::wide::isqrt32), exact, plus one where not a
 ///   square);
 /// - the centre `xc0 + kx·dy` from `xc0` and `kx` rounded to `2⁻¹⁶` and `dy₁₂`:
 ///   within `e = 2⁻¹⁷ + 2⁻¹⁷·|dy| + (|kx| + 2⁻¹⁷)·2⁻¹² + 2⁻¹⁶` (the last the shift's
@@ -466,7 +466,7 @@ impl IntCut {
     /// the sphere; `None` if none can.
     #[inline]
     pub(crate) fn row_span(&self, j: u32, width: u32) -> Option<(u32, u32)> {
-        use crate::fixed::{isqrt32, mul_i32_wide, mul_wide};
+        use crate::math::wide::{isqrt32, mul_i32_wide, mul_wide};
         let IntCut::Ellipse {
             y12,
             q24,

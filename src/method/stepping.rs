@@ -6,8 +6,8 @@
 //! [`CameraSteps`].
 
 use crate::camera::Camera;
+use crate::math::vec3::Vec3;
 use crate::math::UNIT_ROUNDOFF;
-use crate::vec3::Vec3;
 
 /// How the ray direction advances: a strategy type per [`Stepping`](crate::Stepping).
 pub(crate) trait Stepper {

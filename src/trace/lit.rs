@@ -30,47 +30,22 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
+use crate::camera::span::{Margin, Silhouette};
 use crate::camera::Camera;
-use crate::frame::{Frame, FrameSphere};
-use crate::intersect::{Auto, Robust, Scale, SphereGeom, TestStrategy, AUTO_FD_CAPACITY};
-use crate::light::Light;
-use crate::material::Material;
+use crate::math::vec3::Vec3;
 use crate::math::{sqrt_exact, SqrtFn, UNIT_ROUNDOFF};
-use crate::render::Options;
-use crate::sampling::{Fnv, Ident, Rows};
-use crate::scanline::RowTracer;
+use crate::method::intersect::{Auto, Robust, Scale, SphereGeom, TestStrategy, AUTO_FD_CAPACITY};
+use crate::method::stepping::Stepper;
+use crate::scene::light::Light;
+use crate::scene::material::Material;
+use crate::scene::sphere::Sphere;
 use crate::scene::Scene;
-use crate::shade::{channels, lab1_factor, Shader};
-use crate::sink::RowSink;
-use crate::span::{Margin, Silhouette};
-use crate::sphere::Sphere;
-use crate::stepping::Stepper;
-use crate::vec3::Vec3;
-
-/// Where a shadow or reflection ray starts: the choice of how a secondary ray leaves
-/// the surface its origin was computed on. A speed/accuracy axis of its own (matched
-/// once per frame, like the [`Method`](crate::Method)); only scenes with lights or
-/// mirrors use it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum SecondaryOrigin {
-    /// No epsilon (default): the surface the ray leaves is not tested where convexity
-    /// proves it cannot be met (leaving a plane, or a sphere's outside), and is met at
-    /// its directly computed far root where it can (leaving a sphere's inner surface).
-    /// Every other object is tested from the hit point itself.
-    Convex,
-    /// The textbook fixed epsilon: the ray starts at `s = ε` (scene units) along its
-    /// unit direction and every object, the one it leaves included, is tested. Fails
-    /// both ways: shadow acne where the hit point's rounding error (≈ 2⁻²⁴ of the
-    /// coordinates' magnitude) exceeds ε, and light leaking under spheres that touch a
-    /// floor where ε exceeds the occluder's chord.
-    Epsilon(f32),
-}
-
-impl SecondaryOrigin {
-    /// The textbook epsilon, `10⁻³` scene units.
-    pub const TEXTBOOK: SecondaryOrigin = SecondaryOrigin::Epsilon(1e-3);
-}
+use crate::trace::frame::{Frame, FrameSphere};
+use crate::trace::options::{Options, SecondaryOrigin};
+use crate::trace::rows::{Fnv, Ident, Rows};
+use crate::trace::scanline::RowSink;
+use crate::trace::scanline::RowTracer;
+use crate::trace::shade::{channels, lab1_factor, Shader};
 
 /// How a secondary ray leaves its surface, as a strategy type.
 pub(crate) trait Exit {
@@ -163,7 +138,7 @@ impl FramePlane {
     };
 
     /// The plane's constants; `None` for a zero or non-finite normal.
-    fn new(plane: &crate::plane::Plane, eye: Vec3, scale: Scale) -> Option<Self> {
+    fn new(plane: &crate::scene::plane::Plane, eye: Vec3, scale: Scale) -> Option<Self> {
         let n = plane.normal.try_normalize()?;
         let q = (plane.point - eye) * scale.0;
         // The checker basis: the world axis along which n is smallest (ties x, y, z).
@@ -328,7 +303,7 @@ impl<const N: usize> ShadowRow<N> {
 
 /// Renders one frame of a scene with lights, planes or mirrors.
 ///
-/// Out of line, as `frame::render` is: the per-sphere constants live in this
+/// Out of line, as `lab1::render` is: the per-sphere constants live in this
 /// function's own stack frame, so a render pays for its own method's, not for the
 /// largest of all the methods the one dispatch could have chosen.
 #[inline(never)]

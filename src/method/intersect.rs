@@ -15,9 +15,9 @@
 
 use core::num::NonZeroU32;
 
+use crate::camera::span::{Extent, Margin};
+use crate::math::vec3::Vec3;
 use crate::math::{SqrtFn, EDGE_TOLERANCE, UNIT_ROUNDOFF};
-use crate::span::{Extent, Margin};
-use crate::vec3::Vec3;
 
 /// A sphere's per-frame geometry relative to the ray origin (the eye, for primary
 /// rays). Built once per frame so the per-pixel tests only multiply and add.
@@ -99,7 +99,7 @@ impl Scale {
     #[cold]
     #[inline(never)]
     pub(crate) fn for_spheres<'s>(
-        spheres: impl IntoIterator<Item = &'s crate::sphere::Sphere>,
+        spheres: impl IntoIterator<Item = &'s crate::scene::sphere::Sphere>,
         origin: Vec3,
     ) -> Self {
         let mut m = 0.0f32;
@@ -356,8 +356,7 @@ pub const FD_ANCHOR_INTERVAL: u32 = 16;
 ///
 /// ```
 /// use embedded_graphics::{pixelcolor::Rgb888, prelude::*};
-/// use embedded_raytracer::intersect::AUTO_FD_CAPACITY;
-/// use embedded_raytracer::{Camera, Method, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3};
+/// use embedded_raytracer::{AUTO_FD_CAPACITY, Camera, Method, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3};
 ///
 /// // A row of small spheres, one more than the limit.
 /// let mut scene: Scene<64> = Scene::new(Rgb888::BLACK);

@@ -1,86 +1,17 @@
-//! The sphere primitive: its checked constructor and the single-ray queries, which go
-//! through the one dispatch to the test strategy types of [`intersect`](crate::intersect).
+//! Single-ray queries through the one dispatch: [`Sphere::intersect`] and the slides'
+//! tests by name, and [`Scene::closest_hit`]. They are the scene objects' methods, kept
+//! here so that the scene's types sit below the methods that test them.
 
-use embedded_graphics::pixelcolor::Rgb888;
-
-use crate::dispatch::{dispatch_ray, Visit};
-use crate::error::SphereError;
-use crate::intersect::{Scale, SphereGeom, TestStrategy};
-use crate::material::Material;
+use crate::math::vec3::Vec3;
 use crate::math::SqrtFn;
+use crate::method::dispatch::{dispatch_ray, Visit};
+use crate::method::intersect::{Scale, SphereGeom, TestStrategy};
+use crate::method::stepping::Stepper;
 use crate::method::{SphereTest, Sqrt};
-use crate::stepping::Stepper;
-use crate::vec3::Vec3;
-
-/// A sphere: centre, radius, (8-bit sRGB) colour and [`Material`] (matte by default).
-///
-/// ```
-/// use embedded_graphics::pixelcolor::Rgb888;
-/// use embedded_raytracer::{Sphere, Vec3};
-///
-/// // `const`: lives in flash. `try_new` in a const context turns a bad sphere into a
-/// // compile error instead of a run-time one.
-/// static RED: Sphere = match Sphere::try_new(Vec3::new(0.0, 0.0, -3.0), 1.0, Rgb888::new(255, 0, 0)) {
-///     Ok(s) => s,
-///     Err(_) => panic!("invalid sphere"),
-/// };
-/// let t = RED.intersect_robust(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0));
-/// assert_eq!(t, Some(2.0));
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sphere {
-    /// Centre.
-    pub center: Vec3,
-    /// Radius; `> 0` for a valid sphere.
-    pub radius: f32,
-    /// Object colour.
-    pub color: Rgb888,
-    /// Highlight and mirror response ([`Material::DEFAULT`] unless set).
-    pub material: Material,
-}
+use crate::scene::sphere::Sphere;
+use crate::scene::{Hit, Scene};
 
 impl Sphere {
-    /// A sphere, unchecked (for `static` scenes whose numbers are known good).
-    ///
-    /// A non-positive or non-finite radius does not panic anywhere: such a sphere is
-    /// simply never hit, or hit and shaded at the 0.3 floor.
-    #[must_use]
-    pub const fn new(center: Vec3, radius: f32, color: Rgb888) -> Self {
-        Self {
-            center,
-            radius,
-            color,
-            material: Material::DEFAULT,
-        }
-    }
-
-    /// The same sphere with another material (unchecked; [`Sphere::check`] checks it).
-    #[must_use]
-    pub const fn with_material(mut self, material: Material) -> Self {
-        self.material = material;
-        self
-    }
-
-    /// A sphere, checked: finite centre and radius, radius `> 0`.
-    pub const fn try_new(center: Vec3, radius: f32, color: Rgb888) -> Result<Self, SphereError> {
-        Self::new(center, radius, color).check()
-    }
-
-    /// The sphere if its numbers are usable: [`Sphere::try_new`]'s rules and a valid
-    /// [`Material`].
-    pub const fn check(self) -> Result<Self, SphereError> {
-        if !(self.center.is_finite() && self.radius.is_finite()) {
-            return Err(SphereError::NotFinite);
-        }
-        if !(self.radius > 0.0) {
-            return Err(SphereError::RadiusNotPositive);
-        }
-        match self.material.check() {
-            Ok(_) => Ok(self),
-            Err(e) => Err(SphereError::Material(e)),
-        }
-    }
-
     /// Nearest hit `t > 0` of the ray `origin + t·dir` with the chosen method (the
     /// forward-differenced tests evaluate one ray directly, as at an anchor).
     #[must_use]
@@ -152,9 +83,68 @@ impl Sphere {
     }
 }
 
+impl<const N: usize, const L: usize, const P: usize, const D: usize> Scene<N, L, P, D> {
+    /// The closest hit with `t > 0` of the ray `origin + t·dir` over all spheres (planes
+    /// are not searched).
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::Rgb888;
+    /// use embedded_raytracer::{Scene, Sphere, SphereTest, Sqrt, Vec3};
+    ///
+    /// let mut scene: Scene<2> = Scene::new(Rgb888::new(0, 0, 0));
+    /// scene.push(Sphere::new(Vec3::new(0.0, 0.0, -10.0), 1.0, Rgb888::new(255, 0, 0))).unwrap();
+    /// scene.push(Sphere::new(Vec3::new(0.0, 0.0, -5.0), 1.0, Rgb888::new(0, 255, 0))).unwrap();
+    /// let hit = scene.closest_hit(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), SphereTest::Robust, Sqrt::Exact);
+    /// assert_eq!(hit.map(|h| (h.index, h.t)), Some((1, 4.0)));
+    /// ```
+    #[must_use]
+    pub fn closest_hit(&self, origin: Vec3, dir: Vec3, test: SphereTest, sqrt: Sqrt) -> Option<Hit> {
+        struct Query<'s> {
+            spheres: &'s [Sphere],
+            origin: Vec3,
+            dir: Vec3,
+        }
+        impl Visit for Query<'_> {
+            type Output = Option<Hit>;
+            #[inline(always)]
+            fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Option<Hit> {
+                // Closest hit: each test gets the nearest `t` found so far as its
+                // `t_max`, so a farther sphere is rejected by the same comparison that
+                // finds hits. Constants are made per sphere as it is tested (no
+                // per-query buffer on the stack).
+                let a = self.dir.dot(self.dir);
+                let scale = Scale::for_spheres(self.spheres, self.origin);
+                let mut t_max = f32::INFINITY;
+                let mut best = None;
+                for (index, sphere) in self.spheres.iter().enumerate() {
+                    let g = SphereGeom::new(sphere.center, sphere.radius, self.origin, scale);
+                    if let Some(t) = T::ray::<Q>(&g, self.dir, a, t_max) {
+                        t_max = t;
+                        best = Some(Hit { index, t });
+                    }
+                }
+                best.map(|h| Hit {
+                    t: scale.unscale_t(h.t),
+                    ..h
+                })
+            }
+        }
+        dispatch_ray(
+            test,
+            sqrt,
+            Query {
+                spheres: self.spheres(),
+                origin,
+                dir,
+            },
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use embedded_graphics::pixelcolor::Rgb888;
 
     /// A single-ray query with the forward-differenced test is its direct evaluation,
     /// which agrees with the robust test on an easy ray.

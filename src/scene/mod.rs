@@ -2,20 +2,19 @@
 //! and mirrors — and the closest-hit search for one ray (through the one dispatch,
 //! like the renderer).
 
+pub mod light;
+pub mod material;
+pub mod plane;
+pub mod sphere;
+
 use embedded_graphics::pixelcolor::Rgb888;
 use heapless::Vec;
 
-use crate::dispatch::{dispatch_ray, Visit};
 use crate::error::{SceneError, SettingsError};
-use crate::intersect::{Scale, SphereGeom, TestStrategy};
-use crate::light::Light;
-use crate::material::Material;
-use crate::math::SqrtFn;
-use crate::method::{SphereTest, Sqrt};
-use crate::plane::Plane;
-use crate::sphere::Sphere;
-use crate::stepping::Stepper;
-use crate::vec3::Vec3;
+use crate::scene::light::Light;
+use crate::scene::material::Material;
+use crate::scene::plane::Plane;
+use crate::scene::sphere::Sphere;
 
 /// The largest reflection depth any scene type can ask for (`D ≤ MAX_DEPTH` is what
 /// scene files accept; a larger `D` is clamped to it).
@@ -27,9 +26,10 @@ pub const MAX_DEPTH: u8 = 8;
 /// use embedded_raytracer::Settings;
 /// let s = Settings::DEFAULT;
 /// assert_eq!((s.ambient, s.max_depth, s.shadows), (0.1, 2, true));
-/// assert!(Settings { ambient: 1.5, ..s }.check().is_err());
+/// assert!(s.with_ambient(1.5).check().is_err());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Settings {
     /// Light every lit surface gets regardless of the lights, `0 … 1` (default 0.1).
     /// Not used without lights (Lab #1 has its own 0.3 floor).
@@ -48,6 +48,27 @@ impl Settings {
         max_depth: 2,
         shadows: true,
     };
+
+    /// The same settings with ambient light `ambient`.
+    #[must_use]
+    pub const fn with_ambient(mut self, ambient: f32) -> Self {
+        self.ambient = ambient;
+        self
+    }
+
+    /// The same settings with reflection depth `max_depth`.
+    #[must_use]
+    pub const fn with_max_depth(mut self, max_depth: u8) -> Self {
+        self.max_depth = max_depth;
+        self
+    }
+
+    /// The same settings with shadows on or off.
+    #[must_use]
+    pub const fn with_shadows(mut self, shadows: bool) -> Self {
+        self.shadows = shadows;
+        self
+    }
 
     /// The settings if `ambient` is in `[0, 1]` and `max_depth ≤` [`MAX_DEPTH`].
     pub const fn check(self) -> Result<Self, SettingsError> {
@@ -121,6 +142,7 @@ pub struct Scene<const N: usize, const L: usize = 0, const P: usize = 0, const D
 /// Objects are numbered spheres first ([`Scene::spheres`]), then planes: a plane hit
 /// has `index = spheres().len() + k` for the `k`-th plane.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Hit {
     /// Index of the object hit (spheres, then planes).
     pub index: usize,
@@ -167,9 +189,12 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Scene<N, L,
     }
 
     /// A scene from arrays of spheres, lights and planes (each within its capacity, a
-    /// compile-time error otherwise) and settings, usable in a `static`. Nothing is
-    /// checked (use the objects' `check` in a const context for that); a `max_depth`
-    /// above `D` is traced as `D`, and in a scene type with `D = 0` mirrors are matte.
+    /// compile-time error otherwise) and settings, usable in a `static`. Like every
+    /// const constructor it checks nothing: [`Scene::check`] applies the rules of the
+    /// checked path ([`push`](Self::push), [`set_settings`](Self::set_settings)) to the
+    /// whole scene. The reflection depth has one rule: a `max_depth` above `D` (or
+    /// [`MAX_DEPTH`]) is an error where anything is checked; unchecked, the render
+    /// never traces deeper than the type can hold ([`Scene::max_depth`]).
     #[must_use]
     pub const fn from_arrays<const MS: usize, const ML: usize, const MP: usize>(
         spheres: [Sphere; MS],
@@ -226,6 +251,12 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Scene<N, L,
     /// Sets the settings after checking them ([`Settings::check`], and
     /// `max_depth ≤ D`).
     pub fn set_settings(&mut self, settings: Settings) -> Result<(), SceneError> {
+        self.settings = Self::check_settings(settings)?;
+        Ok(())
+    }
+
+    /// [`Settings::check`], and `max_depth ≤ D`: the one rule of the reflection depth.
+    fn check_settings(settings: Settings) -> Result<Settings, SceneError> {
         let settings = settings.check()?;
         if usize::from(settings.max_depth) > D {
             return Err(SettingsError::MaxDepth {
@@ -237,8 +268,35 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Scene<N, L,
             }
             .into());
         }
-        self.settings = settings;
-        Ok(())
+        Ok(settings)
+    }
+
+    /// The scene if every object, the settings and the reflection depth pass the checks
+    /// of [`push`](Self::push), [`push_light`](Self::push_light),
+    /// [`push_plane`](Self::push_plane) and [`set_settings`](Self::set_settings): what a
+    /// scene built unchecked ([`Scene::from_arrays`]) is told, for instance in a test.
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::Rgb888;
+    /// use embedded_raytracer::{Scene, SceneError, Settings, SettingsError};
+    ///
+    /// // Depth 3 in a type that reflects at most twice: traced as 2, refused by the check.
+    /// let scene: Scene<0, 0, 0, 2> =
+    ///     Scene::from_arrays([], [], [], Rgb888::new(0, 0, 0), Settings::DEFAULT.with_max_depth(3));
+    /// assert_eq!(scene.max_depth(), 2);
+    /// assert_eq!(scene.check(), Err(SceneError::Settings(SettingsError::MaxDepth { max: 2 })));
+    /// ```
+    pub fn check(&self) -> Result<(), SceneError> {
+        for sphere in self.spheres() {
+            Self::check_mirror(&sphere.check()?.material)?;
+        }
+        for light in self.lights() {
+            light.check()?;
+        }
+        for plane in self.planes() {
+            Self::check_mirror(&plane.check()?.material)?;
+        }
+        Self::check_settings(self.settings).map(|_| ())
     }
 
     /// The spheres, in the order they were added.
@@ -288,61 +346,5 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Scene<N, L,
     /// Sets the background colour.
     pub fn set_background(&mut self, background: Rgb888) {
         self.background = background;
-    }
-
-    /// The closest hit with `t > 0` of the ray `origin + t·dir` over all spheres (planes
-    /// are not searched).
-    ///
-    /// ```
-    /// use embedded_graphics::pixelcolor::Rgb888;
-    /// use embedded_raytracer::{Scene, Sphere, SphereTest, Sqrt, Vec3};
-    ///
-    /// let mut scene: Scene<2> = Scene::new(Rgb888::new(0, 0, 0));
-    /// scene.push(Sphere::new(Vec3::new(0.0, 0.0, -10.0), 1.0, Rgb888::new(255, 0, 0))).unwrap();
-    /// scene.push(Sphere::new(Vec3::new(0.0, 0.0, -5.0), 1.0, Rgb888::new(0, 255, 0))).unwrap();
-    /// let hit = scene.closest_hit(Vec3::ZERO, Vec3::new(0.0, 0.0, -1.0), SphereTest::Robust, Sqrt::Exact);
-    /// assert_eq!(hit.map(|h| (h.index, h.t)), Some((1, 4.0)));
-    /// ```
-    #[must_use]
-    pub fn closest_hit(&self, origin: Vec3, dir: Vec3, test: SphereTest, sqrt: Sqrt) -> Option<Hit> {
-        struct Query<'s> {
-            spheres: &'s [Sphere],
-            origin: Vec3,
-            dir: Vec3,
-        }
-        impl Visit for Query<'_> {
-            type Output = Option<Hit>;
-            #[inline(always)]
-            fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Option<Hit> {
-                // Closest hit: each test gets the nearest `t` found so far as its
-                // `t_max`, so a farther sphere is rejected by the same comparison that
-                // finds hits. Constants are made per sphere as it is tested (no
-                // per-query buffer on the stack).
-                let a = self.dir.dot(self.dir);
-                let scale = Scale::for_spheres(self.spheres, self.origin);
-                let mut t_max = f32::INFINITY;
-                let mut best = None;
-                for (index, sphere) in self.spheres.iter().enumerate() {
-                    let g = SphereGeom::new(sphere.center, sphere.radius, self.origin, scale);
-                    if let Some(t) = T::ray::<Q>(&g, self.dir, a, t_max) {
-                        t_max = t;
-                        best = Some(Hit { index, t });
-                    }
-                }
-                best.map(|h| Hit {
-                    t: scale.unscale_t(h.t),
-                    ..h
-                })
-            }
-        }
-        dispatch_ray(
-            test,
-            sqrt,
-            Query {
-                spheres: &self.spheres,
-                origin,
-                dir,
-            },
-        )
     }
 }

@@ -82,21 +82,25 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
-use crate::frame::{Frame, FrameSphere};
-use crate::intersect::TestStrategy;
+use crate::math::vec3::Vec3;
 use crate::math::SqrtFn;
-use crate::render::Sample;
-use crate::scanline::{self, ColorRuns, PixelRow, RowPixels, RowTracer};
-use crate::shade::Shader;
-use crate::sink::RowSink;
-use crate::stepping::Stepper;
-use crate::vec3::Vec3;
+use crate::method::intersect::TestStrategy;
+use crate::method::stepping::Stepper;
+use crate::trace::frame::{Frame, FrameSphere};
+use crate::trace::options::Sample;
+use crate::trace::rows::{Rows, FINE};
+use crate::trace::scanline::RowSink;
+use crate::trace::scanline::{self, ColorRuns, PixelRow, RowPixels, RowTracer};
+use crate::trace::shade::Shader;
 
 include!(concat!(env!("OUT_DIR"), "/srgb_tables.rs"));
 
-/// Rays per pixel; see the [module docs](self).
+/// Rays per pixel: one at the centre, a grid, or a grid only where an edge can cross
+/// the pixel (`src/sampling/mod.rs` documents how the edges are found and each rule's
+/// error bound).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum Sampling {
     /// One ray through the pixel centre.
     #[default]
@@ -173,6 +177,7 @@ impl Sampling {
 /// Why a sampling choice was refused.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum SamplingError {
     /// The grid is `n × n` with `n` = 2…4; this `n` is outside.
     SubSamples(u32),
@@ -235,91 +240,6 @@ pub const SMALL: f32 = 2.0;
 /// both pixels edge pixels: where shading changes this fast (a sphere's rim, a
 /// highlight) the pixel's mean is not its centre's colour.
 pub const CONTRAST: u8 = 16;
-
-/// A ray's identity accumulated along its path (see [`RowTracer::identified`]).
-pub(crate) trait Ident {
-    /// Whether this identity is kept (an identity that is not computes nothing).
-    const KEPT: bool;
-    fn mix(&mut self, x: u32);
-    /// The ray sees detail finer than the pixel spacing (checker cells): its pixel is
-    /// an edge pixel whatever its neighbours see.
-    fn fine(&mut self);
-}
-
-/// FNV-1a-style mixing of 32-bit words, from 0 (the identity of a ray that hits
-/// nothing: every word mixed in is non-zero, and an odd multiplier keeps it so), and
-/// whether the ray saw detail finer than a pixel.
-pub(crate) struct Fnv(pub u32, pub bool);
-
-/// The identity of a ray that saw detail finer than a pixel: its pixel is an edge
-/// pixel (a hash that happens to equal it only adds one).
-pub(crate) const FINE: u32 = u32::MAX;
-
-impl Fnv {
-    /// The identity as [`RowTracer::identified`] reports it.
-    pub(crate) fn get(&self) -> u32 {
-        if self.1 {
-            FINE
-        } else {
-            self.0
-        }
-    }
-}
-
-impl Ident for Fnv {
-    const KEPT: bool = true;
-    #[inline(always)]
-    fn mix(&mut self, x: u32) {
-        self.0 = (self.0 ^ x).wrapping_mul(0x0100_0193);
-    }
-    #[inline(always)]
-    fn fine(&mut self) {
-        self.1 = true;
-    }
-}
-
-/// How a frame's rows are traced: the sampling's strategy type.
-pub(crate) trait Rows: Copy {
-    /// The one-ray row loop (the only one the integer kernel has).
-    const CENTER: bool;
-    /// The part of the image the frame must trace for `clip` (adaptive sampling
-    /// needs the ring of pixels around it).
-    fn clip(&self, clip: Rectangle) -> Rectangle;
-    /// Trace the frame's rows into `sink`; `tracer` as for [`scanline::draw_rows`].
-    fn draw_rows<'s, const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X>(
-        self,
-        frame: &Frame<'s, T, Sh>,
-        sink: &mut K,
-        tracer: impl FnMut(u32, &mut u32, &mut u32) -> X,
-    ) -> Result<(), K::Error>
-    where
-        X: RowTracer<'s, T, Sh>;
-}
-
-/// [`Sampling::Center`]: the scanline loop as it is.
-#[derive(Clone, Copy)]
-pub(crate) struct CenterRows;
-
-impl Rows for CenterRows {
-    const CENTER: bool = true;
-    #[inline(always)]
-    fn clip(&self, clip: Rectangle) -> Rectangle {
-        clip
-    }
-
-    #[inline(always)]
-    fn draw_rows<'s, const N: usize, K: RowSink, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X>(
-        self,
-        frame: &Frame<'s, T, Sh>,
-        sink: &mut K,
-        tracer: impl FnMut(u32, &mut u32, &mut u32) -> X,
-    ) -> Result<(), K::Error>
-    where
-        X: RowTracer<'s, T, Sh>,
-    {
-        scanline::draw_rows::<N, K, S, T, Q, Sh, X>(frame, sink, tracer)
-    }
-}
 
 /// [`Sampling::Grid`]`(n)`: every pixel averaged.
 #[derive(Clone, Copy)]
@@ -538,14 +458,14 @@ pub(crate) struct SpanAdaptiveRows {
 /// empty) is cut out of it.
 #[derive(Clone, Copy)]
 struct Ring {
-    outer: crate::span::Silhouette,
-    inner: Option<crate::span::Silhouette>,
-    /// The outer ellipse's [`Silhouette::reach_consts`](crate::span::Silhouette::reach_consts).
+    outer: crate::camera::span::Silhouette,
+    inner: Option<crate::camera::span::Silhouette>,
+    /// The outer ellipse's [`Silhouette::reach_consts`](crate::camera::span::Silhouette::reach_consts).
     reach: (f32, f32),
 }
 
 impl Ring {
-    fn new(outer: crate::span::Silhouette, inner: Option<crate::span::Silhouette>) -> Self {
+    fn new(outer: crate::camera::span::Silhouette, inner: Option<crate::camera::span::Silhouette>) -> Self {
         Self {
             outer,
             inner,
@@ -767,10 +687,12 @@ pub const SHADE_TOLERANCE: f32 = 1.5;
 fn span_bands<const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
     frame: &Frame<'_, T, Sh>,
 ) -> Option<Vec<SpanBands, N>> {
-    use crate::span::Silhouette;
+    use crate::camera::span::Silhouette;
     let camera = frame.camera;
     let step_err = S::error_bound(camera);
-    let err = step_err.max(<crate::stepping::DirectStep as Stepper>::error_bound(camera));
+    let err = step_err.max(<crate::method::stepping::DirectStep as Stepper>::error_bound(
+        camera,
+    ));
     let mut out: Vec<SpanBands, N> = Vec::new();
     let w = camera.w();
     for (k, fs) in frame.spheres.iter().enumerate() {
@@ -843,7 +765,7 @@ fn span_bands<const N: usize, S: Stepper, T: TestStrategy, Sh: Shader>(
 /// tests in `lab/tests/lab/sampling.rs` place spheres just past the margin, and one crossing
 /// the eye's plane (not left out).
 #[inline]
-fn behind_the_eye(g: &crate::intersect::SphereGeom, w: crate::vec3::Vec3) -> bool {
+fn behind_the_eye(g: &crate::method::intersect::SphereGeom, w: crate::math::vec3::Vec3) -> bool {
     let r = crate::math::sqrt_exact(g.r2);
     let l = crate::math::sqrt_exact(g.l2);
     g.l.dot(w) + r <= -(l + r) * (1.0 / 256.0)
@@ -872,20 +794,20 @@ fn shade_ring(
     l: Vec3,
     r: f32,
     camera: &crate::camera::Camera,
-    outer: crate::span::Silhouette,
+    outer: crate::camera::span::Silhouette,
 ) -> Option<Ring> {
-    use crate::span::{Margin, Silhouette};
+    use crate::camera::span::{Margin, Silhouette};
     let radius = outer.bounds()?.1.max(0.5);
     let tol = SHADE_TOLERANCE;
     let slope = 255.0 * 3.2 / radius;
     let kink = (0.25 - 2.0 * tol / slope).max(0.0) * 3.2 / radius;
     let smooth = libm::cbrtf(22.0 / (tol * radius * radius));
     let f_lo = if kink > 0.0 {
-        crate::shade::AMBIENT - kink
+        crate::trace::shade::AMBIENT - kink
     } else {
-        crate::shade::AMBIENT
+        crate::trace::shade::AMBIENT
     };
-    let f_hi = smooth.max(crate::shade::AMBIENT + kink);
+    let f_hi = smooth.max(crate::trace::shade::AMBIENT + kink);
     if !(f_hi > f_lo) {
         return None;
     }
@@ -1204,11 +1126,11 @@ fn small_silhouettes<const N: usize, T: TestStrategy, Sh: Shader>(
         // stepping could make a sub-pixel sphere look large); the box from the culling
         // ellipse, which contains every pixel a centre ray can hit it in (without
         // culling, `Silhouette::ALL`, the tight one stands in).
-        let tight = crate::span::Silhouette::new(
+        let tight = crate::camera::span::Silhouette::new(
             fs.geom.l,
             crate::math::sqrt_exact(fs.geom.r2),
             frame.camera,
-            crate::span::Margin::Linear,
+            crate::camera::span::Margin::Linear,
             0.0,
         )
         .bounds();

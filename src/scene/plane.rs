@@ -4,8 +4,8 @@
 use embedded_graphics::pixelcolor::Rgb888;
 
 use crate::error::PlaneError;
-use crate::material::Material;
-use crate::vec3::Vec3;
+use crate::math::vec3::Vec3;
+use crate::scene::material::Material;
 
 /// An infinite plane through `point` with normal `normal` (non-zero, any length).
 ///

@@ -5,9 +5,9 @@
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
-use crate::intersect::{Scale, SphereGeom};
-use crate::sphere::Sphere;
-use crate::vec3::Vec3;
+use crate::math::vec3::Vec3;
+use crate::method::intersect::{Scale, SphereGeom};
+use crate::scene::sphere::Sphere;
 
 /// A shading model as a strategy type: its per-sphere constants, built by the frame
 /// with the geometry; the scanline loop is monomorphised over it. How a hit is shaded

@@ -3,27 +3,22 @@
 //! ([`TestStrategy::Consts`]), the shader's ([`Shader::Object`]) and the silhouette
 //! that span culling cuts per row ([`Silhouette`]) — all built in one pass.
 //!
-//! [`render`] is what the one dispatch (`dispatch.rs`) calls with the method's
-//! strategy types: set up the frame here, then hand it to the scanline loop
-//! (`scanline.rs`).
+//! The frame is built by the spheres-only render (`lab1.rs`) and the features path
+//! (`lit.rs`), then handed to the scanline loop (`scanline.rs`).
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
+use crate::camera::span::Silhouette;
 use crate::camera::Camera;
-use crate::intersect::{Auto, Robust, RowGeometry, Scale, SphereGeom, TestStrategy, AUTO_FD_CAPACITY};
-use crate::math::SqrtFn;
-use crate::render::Options;
-use crate::sampling::Rows;
-use crate::scanline::Lab1Row;
+use crate::method::intersect::{RowGeometry, Scale, SphereGeom, TestStrategy};
+use crate::method::stepping::Stepper;
+use crate::scene::sphere::Sphere;
 use crate::scene::Scene;
-use crate::shade::{Lab1, Shader};
-use crate::sink::RowSink;
-use crate::span::Silhouette;
-use crate::sphere::Sphere;
-use crate::stepping::Stepper;
+use crate::trace::options::Options;
+use crate::trace::shade::Shader;
 
 /// A sphere as the frame sees it.
 ///
@@ -55,141 +50,6 @@ pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
     pub j1: u32,
     /// Where the image's upper-left pixel sits on the target.
     pub offset: Point,
-}
-
-/// Renders one frame of a scene without lights, planes or mirrors (Lab #1 on
-/// spheres) with the strategy types the dispatch chose: stepping `S`, sphere test `T`,
-/// square root `Q`.
-///
-/// Out of line: the per-sphere constants live in this function's own stack frame, so
-/// a render pays for its own method's (a `Scene<64>` with the robust test keeps 68 B a
-/// sphere, with forward differences 116 B), not for the largest of all the methods
-/// the one dispatch could have chosen.
-#[inline(never)]
-pub(crate) fn render<
-    const N: usize,
-    const L: usize,
-    const P: usize,
-    const D: usize,
-    K: RowSink,
-    S: Stepper,
-    T: TestStrategy,
-    Q: SqrtFn,
-    G: Rows,
->(
-    scene: &Scene<N, L, P, D>,
-    camera: &Camera,
-    options: Options,
-    (clip, rows): (Rectangle, G),
-    offset: Point,
-    sink: &mut K,
-) -> Result<(), K::Error> {
-    // `Auto` in a scene type above its limit (see `AUTO_FD_CAPACITY`); a capacity
-    // within it never reaches the comparison.
-    if T::AUTO && N > AUTO_FD_CAPACITY {
-        return auto_above_limit::<N, L, P, D, K, S, Q, G>(
-            scene,
-            camera,
-            options,
-            (clip, rows),
-            offset,
-            sink,
-        );
-    }
-    frame_of::<N, N, L, P, D, K, S, T, Q, G>(scene, camera, options, (clip, rows), offset, sink)
-}
-
-/// `Auto` in a scene type of more than [`AUTO_FD_CAPACITY`] spheres' capacity: the
-/// robust test for a scene holding more than that many, else forward differences in a
-/// frame sized for that many (not for the capacity).
-#[inline(never)]
-fn auto_above_limit<
-    const N: usize,
-    const L: usize,
-    const P: usize,
-    const D: usize,
-    K: RowSink,
-    S: Stepper,
-    Q: SqrtFn,
-    G: Rows,
->(
-    scene: &Scene<N, L, P, D>,
-    camera: &Camera,
-    options: Options,
-    frame: (Rectangle, G),
-    offset: Point,
-    sink: &mut K,
-) -> Result<(), K::Error> {
-    // Each branch out of line, so that their frames never add up.
-    if scene.spheres().len() > AUTO_FD_CAPACITY {
-        render::<N, L, P, D, K, S, Robust, Q, G>(scene, camera, options, frame, offset, sink)
-    } else {
-        auto_within_limit::<N, L, P, D, K, S, Q, G>(scene, camera, options, frame, offset, sink)
-    }
-}
-
-/// `Auto` in a frame sized for [`AUTO_FD_CAPACITY`] spheres (the scene holds at most
-/// that many).
-#[inline(never)]
-fn auto_within_limit<
-    const N: usize,
-    const L: usize,
-    const P: usize,
-    const D: usize,
-    K: RowSink,
-    S: Stepper,
-    Q: SqrtFn,
-    G: Rows,
->(
-    scene: &Scene<N, L, P, D>,
-    camera: &Camera,
-    options: Options,
-    frame: (Rectangle, G),
-    offset: Point,
-    sink: &mut K,
-) -> Result<(), K::Error> {
-    frame_of::<N, AUTO_FD_CAPACITY, L, P, D, K, S, Auto, Q, G>(scene, camera, options, frame, offset, sink)
-}
-
-/// [`render`]'s frame, its per-sphere data holding `M` spheres, at least the scene's
-/// `scene.spheres().len()`.
-#[inline(always)]
-fn frame_of<
-    const N: usize,
-    const M: usize,
-    const L: usize,
-    const P: usize,
-    const D: usize,
-    K: RowSink,
-    S: Stepper,
-    T: TestStrategy,
-    Q: SqrtFn,
-    G: Rows,
->(
-    scene: &Scene<N, L, P, D>,
-    camera: &Camera,
-    options: Options,
-    (clip, rows): (Rectangle, G),
-    offset: Point,
-    sink: &mut K,
-) -> Result<(), K::Error> {
-    // The per-frame sphere data lives here and the frame borrows it: built in place
-    // once, never moved (a by-value `Frame` holding the `Vec` would be copied on
-    // return, doubling the render's stack).
-    let mut spheres = Vec::new();
-    let Some(frame) = Frame::<T, Lab1>::new::<N, M, L, P, D, S>(
-        scene,
-        camera,
-        options,
-        rows.clip(clip),
-        offset,
-        &mut spheres,
-        0.0,
-    ) else {
-        return Ok(()); // nothing visible
-    };
-    let (w, background) = (camera.w(), frame.background);
-    rows.draw_rows::<M, K, S, T, Q, Lab1, _>(&frame, sink, |_, _, _| Lab1Row { w, background })
 }
 
 impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {

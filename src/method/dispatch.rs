@@ -9,10 +9,10 @@
 //! [`Sphere::intersect`]: crate::Sphere::intersect
 //! [`Scene::closest_hit`]: crate::Scene::closest_hit
 
-use crate::intersect::{Algebraic, Auto, ForwardDiff, Geometric, Robust, TestStrategy};
 use crate::math::{ExactSqrt, FastSqrt, SqrtFn};
+use crate::method::intersect::{Algebraic, Auto, ForwardDiff, Geometric, Robust, TestStrategy};
+use crate::method::stepping::{DirectStep, IncrementalStep, Stepper, WorldSpaceStep};
 use crate::method::{Method, SphereTest, Sqrt, Stepping};
-use crate::stepping::{DirectStep, IncrementalStep, Stepper, WorldSpaceStep};
 
 /// Work that is generic over the method's strategy types.
 pub(crate) trait Visit {

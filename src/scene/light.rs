@@ -2,7 +2,7 @@
 //! (`Scene<N, L, …>`); with none, shading is the seed's Lab #1 headlight.
 
 use crate::error::LightError;
-use crate::vec3::Vec3;
+use crate::math::vec3::Vec3;
 
 /// A light source.
 ///

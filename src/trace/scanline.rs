@@ -17,15 +17,14 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
-use crate::frame::{Frame, FrameSphere};
-use crate::intersect::{Scale, TestStrategy};
+use crate::math::vec3::Vec3;
 use crate::math::SqrtFn;
-use crate::render::Sample;
+use crate::method::intersect::{Scale, TestStrategy};
+use crate::method::stepping::{RowStep, Stepper};
 use crate::scene::Hit;
-use crate::shade::{Lab1, Shader};
-use crate::sink::RowSink;
-use crate::stepping::{RowStep, Stepper};
-use crate::vec3::Vec3;
+use crate::trace::frame::{Frame, FrameSphere};
+use crate::trace::options::Sample;
+use crate::trace::shade::{Lab1, Shader};
 
 /// What a row does with each pixel's closest sphere hit: the shading model, and any
 /// primitive beyond spheres. Built once per row.
@@ -198,6 +197,13 @@ pub(crate) fn activate<'s, const N: usize, S: Stepper, T: TestStrategy, Sh: Shad
         });
     }
     (lo_all, hi_all)
+}
+
+/// A consumer of rows: the pixels of `area` (one row, left to right), pulled from the
+/// scanline loop's row as samples or as colour runs.
+pub(crate) trait RowSink {
+    type Error;
+    fn row<R: PixelRow>(&mut self, area: Rectangle, row: R) -> Result<(), Self::Error>;
 }
 
 /// One row as a sink takes it: every pixel as a [`Sample`] (direction, hit, colour),

@@ -21,6 +21,10 @@
 //! The two tolerances every error bound of the crate is stated in live here too:
 //! [`UNIT_ROUNDOFF`] and [`EDGE_TOLERANCE`].
 
+pub mod limits;
+pub mod vec3;
+pub(crate) mod wide;
+
 /// The unit roundoff of `f32`, `u = 2⁻²⁴`: one correctly rounded operation changes its
 /// exact result by at most `u` relative. Every rounding bound in the crate counts in it.
 pub const UNIT_ROUNDOFF: f32 = 1.0 / 16_777_216.0;

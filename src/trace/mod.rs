@@ -1,0 +1,12 @@
+//! Tracing at its three rates: per frame (`frame`: the visible part of the image and
+//! each sphere's constants), per row (`scanline`: the row's active spheres) and per
+//! pixel (the closest hit, shaded by `shade`); `lit` is the same loop's features path
+//! (lights, shadows, planes, mirrors).
+
+pub(crate) mod frame;
+pub(crate) mod lab1;
+pub mod lit;
+pub mod options;
+pub(crate) mod rows;
+pub(crate) mod scanline;
+pub mod shade;

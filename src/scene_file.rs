@@ -233,12 +233,33 @@ fn material(specular: &Option<F32>, shininess: &Option<F32>, reflect: &Option<F3
     )
 }
 
-/// A light's `type`.
-#[derive(Clone, Copy, Deserialize)]
-#[serde(rename_all = "lowercase")]
+/// A light's `type`: `"directional"` or `"point"`.
+#[derive(Clone, Copy)]
 enum LightKind {
     Directional,
     Point,
+}
+
+impl<'de> Deserialize<'de> for LightKind {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct KindVisitor;
+        impl Visitor<'_> for KindVisitor {
+            type Value = LightKind;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("\"directional\" or \"point\"")
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<LightKind, E> {
+                match v {
+                    "directional" => Ok(LightKind::Directional),
+                    "point" => Ok(LightKind::Point),
+                    _ => Err(E::invalid_value(Unexpected::Str(v), &self)),
+                }
+            }
+        }
+        // Any other type (a number, a table, …) is answered by the visitor's
+        // `expecting`: "invalid type: integer `5`, expected "directional" or "point"".
+        d.deserialize_any(KindVisitor)
+    }
 }
 
 #[derive(Deserialize)]
@@ -717,19 +738,203 @@ fn camera_field(e: CameraError, size: Size) -> String {
     format!("camera.{key}")
 }
 
+/// The deepest nesting of arrays and inline tables a scene file has a use for: an
+/// inline array of tables whose values are arrays (`sphere = [{ center = [0, 0, 0] }]`).
+const MAX_NESTING: usize = 3;
+
+/// Twice what a scene of `n` spheres, `l` lights and `p` planes can hold, counted as
+/// the pre-check counts: keys (`=`) and separators (`,`), and table headers. A plane,
+/// the largest object, has 8 keys and 4 arrays of 3 (8 separators, a trailing comma
+/// each: 4 more), 20 in all; the camera 7 keys and 3 arrays, the top level 4 keys and 1
+/// array. Twice, plus a margin: a file a little over a capacity still reaches the
+/// parser, whose error names the count ("more than 2 spheres"); one far over it, which
+/// could only be hostile, is refused without being parsed.
+fn scene_bounds(n: usize, l: usize, p: usize) -> (usize, usize) {
+    let objects = n.saturating_add(l).saturating_add(p);
+    let entries = objects.saturating_mul(40).saturating_add(256);
+    // One header per object and `[camera]`, twice, and a margin.
+    let headers = objects.saturating_mul(2).saturating_add(16);
+    (entries, headers)
+}
+
+/// Rejects, before the TOML parser builds anything, a text that cannot be a scene of
+/// these capacities: nesting deeper than [`MAX_NESTING`], or more keys, values or
+/// table headers than [`scene_bounds`] allows. So the parser's memory is bounded by
+/// that many small values whatever the file (1 MiB of `[[`, of `{`, or one array of half
+/// a million numbers is refused here, at a scan's cost). The scan skips strings and
+/// comments as TOML defines them; it need not be exact elsewhere, only never refuse a
+/// valid scene: every count it makes is at least what the parser would see.
+fn precheck(text: &str, n: usize, l: usize, p: usize) -> Result<(), SceneFileError> {
+    let (max_entries, max_headers) = scene_bounds(n, l, p);
+    let (mut depth, mut entries, mut headers, mut line) = (0usize, 0usize, 0usize, 1usize);
+    let mut line_start = true;
+    let mut chars = text.chars().peekable();
+    let too_many = |what: &str, line: usize| SceneFileError {
+        path: None,
+        field: None,
+        line: Some(line),
+        reason: format!(
+            "more {what} than a scene of {n} spheres, {l} lights and {p} planes can hold \
+             (checked before parsing, at most {})",
+            if what == "table headers" {
+                max_headers
+            } else {
+                max_entries
+            }
+        ),
+    };
+    while let Some(c) = chars.next() {
+        match c {
+            '\n' => {
+                line += 1;
+                line_start = true;
+                continue;
+            }
+            ' ' | '\t' | '\r' => continue,
+            '#' => {
+                // A comment runs to the end of the line.
+                while chars.peek().is_some_and(|&c| c != '\n') {
+                    chars.next();
+                }
+                continue;
+            }
+            '"' | '\'' => {
+                // A string: basic ones have escapes; either kind may be multi-line
+                // (three quotes), which only the closing three quotes end.
+                let triple = chars.peek() == Some(&c) && {
+                    let mut ahead = chars.clone();
+                    ahead.next();
+                    ahead.peek() == Some(&c)
+                };
+                if triple {
+                    chars.next();
+                    chars.next();
+                }
+                let mut run = 0;
+                while let Some(d) = chars.next() {
+                    if d == '\n' {
+                        line += 1;
+                    }
+                    if d == '\\' && c == '"' {
+                        chars.next();
+                        run = 0;
+                        continue;
+                    }
+                    if d == c {
+                        run += 1;
+                        if !triple || run == 3 {
+                            break;
+                        }
+                    } else {
+                        run = 0;
+                        if !triple && d == '\n' {
+                            break;
+                        }
+                    }
+                }
+            }
+            '[' if line_start && depth == 0 => {
+                // A table header, `[name]` or `[[name]]`: one more table.
+                headers += 1;
+                if headers > max_headers {
+                    return Err(too_many("table headers", line));
+                }
+                while chars.peek().is_some_and(|&c| c != '\n') {
+                    chars.next();
+                }
+            }
+            '[' | '{' => {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    return Err(SceneFileError {
+                        path: None,
+                        field: None,
+                        line: Some(line),
+                        reason: format!(
+                            "arrays and inline tables nested {depth} deep: no scene field nests deeper than {MAX_NESTING}"
+                        ),
+                    });
+                }
+            }
+            ']' | '}' => depth = depth.saturating_sub(1),
+            '=' | ',' => {
+                entries += 1;
+                if entries > max_entries {
+                    return Err(too_many("keys and values", line));
+                }
+            }
+            _ => {}
+        }
+        line_start = false;
+    }
+    Ok(())
+}
+
+/// The table a byte offset of the text lies in, as the error paths name it: `""` at
+/// the top level, `camera`, or `light[1]` for the second `[[light]]`.
+fn table_at(text: &str, offset: usize) -> String {
+    let mut current = String::new();
+    let mut counts: Vec<(String, usize)> = Vec::new();
+    for line in text.get(..offset).unwrap_or(text).lines() {
+        let line = line.trim();
+        if let Some(name) = line.strip_prefix("[[").and_then(|r| r.split("]]").next()) {
+            let name = name.trim().to_string();
+            let k = match counts.iter_mut().find(|(n, _)| *n == name) {
+                Some((_, k)) => {
+                    *k += 1;
+                    *k
+                }
+                None => {
+                    counts.push((name.clone(), 0));
+                    0
+                }
+            };
+            current = format!("{name}[{k}]");
+        } else if let Some(name) = line.strip_prefix('[').and_then(|r| r.split(']').next()) {
+            current = name.trim().to_string();
+        }
+    }
+    current
+}
+
 /// TOML → raw structs, with the failing field's path and line.
 fn deserialize<const N: usize, const L: usize, const P: usize>(
     text: &str,
 ) -> Result<RawScene<N, L, P>, SceneFileError> {
+    precheck(text, N, L, P)?;
     let line_of = |e: &toml::de::Error| {
         e.span()
             .map(|s| text.get(..s.start).unwrap_or(text).matches('\n').count() + 1)
     };
-    let de = toml::Deserializer::parse(text).map_err(|e| SceneFileError {
-        path: None,
-        field: None,
-        line: line_of(&e),
-        reason: format!("not valid TOML: {}", e.message().trim()),
+    let de = toml::Deserializer::parse(text).map_err(|e| {
+        let reason = e.message().trim();
+        // The parser names neither the key nor its table for a duplicate: both are
+        // at its span (the second occurrence's key).
+        let field = e
+            .span()
+            .filter(|_| reason.contains("duplicate key"))
+            .and_then(|span| {
+                let key = text
+                    .get(span.clone())?
+                    .trim()
+                    .trim_matches(|c| c == '"' || c == '\'');
+                let table = table_at(text, span.start);
+                Some(if table.is_empty() {
+                    key.to_string()
+                } else {
+                    format!("{table}.{key}")
+                })
+            });
+        let reason = match &field {
+            Some(_) => "not valid TOML: duplicate key (given twice in its table)".to_string(),
+            None => format!("not valid TOML: {reason}"),
+        };
+        SceneFileError {
+            path: None,
+            field,
+            line: line_of(&e),
+            reason,
+        }
     })?;
     serde_path_to_error::deserialize(de).map_err(|e| {
         let path = e.path().to_string();
@@ -775,6 +980,125 @@ color = [255, 64, 64]
         assert_eq!(f.scene.background(), Rgb888::new(10, 20, 30));
         assert_eq!(f.camera.size(), Size::new(32, 24));
         assert_eq!(f.camera.params().up, Vec3::new(0.0, 1.0, 0.0));
+    }
+
+    #[test]
+    fn a_duplicate_key_names_the_key_and_its_table() {
+        let text = format!(
+            "{GOOD}[[light]]\ntype = \"point\"\nposition = [0.0, 1.0, 0.0]\n\
+             [[light]]\ntype = \"point\"\nposition = [0.0, 1.0, 0.0]\nintensity = 1.0\nintensity = 2.0\n"
+        );
+        let e = match parse::<4, 2, 0, 0>(&text) {
+            Ok(_) => panic!("accepted"),
+            Err(e) => e,
+        };
+        assert_eq!(e.field.as_deref(), Some("light[1].intensity"), "{e}");
+        assert!(e.reason.contains("duplicate key"), "{e}");
+        assert_eq!(e.line, Some(GOOD.lines().count() + 8), "{e}");
+        // At the top level and in a plain table, too.
+        let e = err(&GOOD.replace("width = 32", "width = 32\nwidth = 33"));
+        assert_eq!(e.field.as_deref(), Some("camera.width"), "{e}");
+        let e = err(&format!("background = [0, 0, 0]\n{GOOD}"));
+        assert_eq!(e.field.as_deref(), Some("background"), "{e}");
+    }
+
+    #[test]
+    fn a_light_type_of_another_type_names_the_choices() {
+        let text = format!("{GOOD}[[light]]\ntype = 5\ndirection = [0.0, -1.0, 0.0]\n");
+        let e = match parse::<4, 1, 0, 0>(&text) {
+            Ok(_) => panic!("accepted"),
+            Err(e) => e,
+        };
+        assert_eq!(e.field.as_deref(), Some("light[0].type"), "{e}");
+        assert!(
+            e.reason.contains("integer `5`") && e.reason.contains("\"directional\" or \"point\""),
+            "{e}"
+        );
+        let text = format!("{GOOD}[[light]]\ntype = \"spot\"\ndirection = [0.0, -1.0, 0.0]\n");
+        let e = match parse::<4, 1, 0, 0>(&text) {
+            Ok(_) => panic!("accepted"),
+            Err(e) => e,
+        };
+        assert_eq!(e.field.as_deref(), Some("light[0].type"), "{e}");
+        assert!(
+            e.reason.contains("\"spot\"") && e.reason.contains("\"directional\" or \"point\""),
+            "{e}"
+        );
+    }
+
+    /// A megabyte of one array, of nested brackets or of table headers is refused by
+    /// the pre-check, before the parser allocates a value for it.
+    #[test]
+    fn hostile_files_are_refused_before_parsing() {
+        let numbers = format!("{GOOD}x = [{}]\n", "1, ".repeat(523_901));
+        let e = match parse::<256, 8, 8, 8>(&numbers) {
+            Ok(_) => panic!("accepted"),
+            Err(e) => e,
+        };
+        assert!(
+            e.reason
+                .contains("more keys and values than a scene of 256 spheres"),
+            "{e}"
+        );
+
+        let nested = format!("{GOOD}y = {}{}\n", "[".repeat(200_000), "]".repeat(200_000));
+        let e = match parse::<256, 8, 8, 8>(&nested) {
+            Ok(_) => panic!("accepted"),
+            Err(e) => e,
+        };
+        assert!(e.reason.contains("nested 4 deep"), "{e}");
+        assert_eq!(e.line, Some(GOOD.lines().count() + 1), "{e}");
+
+        let tables = format!("{GOOD}{}", "[[z]]\n".repeat(170_000));
+        let e = match parse::<256, 8, 8, 8>(&tables) {
+            Ok(_) => panic!("accepted"),
+            Err(e) => e,
+        };
+        assert!(e.reason.contains("more table headers"), "{e}");
+    }
+
+    /// The pre-check never refuses a scene the parser accepts: the fullest scene of
+    /// each capacity (every object at its capacity with every key, trailing commas,
+    /// comments and strings holding what the scan counts, the inline-table form)
+    /// passes it and parses.
+    #[test]
+    fn the_precheck_takes_the_fullest_scenes() {
+        let sphere = "[[sphere]] # a [[comment]], = , {\ncenter = [0.0, 0.0, -5.0,]\nradius = 0.5\n\
+                      color = [1, 2, 3,]\nspecular = 0.5\nshininess = 8.0\nreflect = 0.5\n";
+        let light = "[[light]]\ntype = \"point\"\nposition = [0.0, 5.0, 0.0,]\nintensity = 0.5\n";
+        let plane = "[[plane]]\npoint = [0.0, -1.0, 0.0,]\nnormal = [0.0, 1.0, 0.0,]\ncolor = [9, 9, 9,]\n\
+                     checker = [1, 1, 1,]\nchecker_size = 1.0\nspecular = 0.1\nshininess = 4.0\nreflect = 0.2\n";
+        let top = "background = [0, 0, 0,]\nambient = 0.1\nmax_depth = 8\nshadows = true\n\
+                   [camera]\neye = [0.0, 0.0, 5.0,]\nlook_at = [0.0, 0.0, 0.0,]\nup = [0.0, 1.0, 0.0,]\n\
+                   fov_y_deg = 60.0\nfov_x_deg = 70.0\nwidth = 32\nheight = 24\n";
+        let text = format!(
+            "{top}{}{}{}",
+            sphere.repeat(256),
+            light.repeat(8),
+            plane.repeat(8)
+        );
+        let file = parse::<256, 8, 8, 8>(&text).unwrap_or_else(|e| panic!("{e}"));
+        let counts = (
+            file.scene.spheres().len(),
+            file.scene.lights().len(),
+            file.scene.planes().len(),
+        );
+        assert_eq!(counts, (256, 8, 8));
+        assert!(parse::<1, 1, 1, 8>(&format!("{top}{sphere}{light}{plane}")).is_ok());
+
+        // Inline tables, one line per sphere, beside comments that hold brackets,
+        // commas, equals signs and quotes.
+        let top_keys = "background = [0, 0, 0,] # \"[{,=\" '''[[x]]'''\nambient = 0.1\nmax_depth = 8\n";
+        let camera = "[camera]\neye = [0.0, 0.0, 5.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y_deg = 60.0\nwidth = 32\nheight = 24\n";
+        let inline = "{ center = [0.0, 0.0, -5.0,], radius = 0.5, color = [1, 2, 3,], specular = 0.5, shininess = 8.0, reflect = 0.5 }";
+        let text = format!(
+            "{top_keys}sphere = [\n{},\n]\n{camera}{}{}",
+            [inline; 256].join(",\n"),
+            light.repeat(8),
+            plane.repeat(8)
+        );
+        let file = parse::<256, 8, 8, 8>(&text).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(file.scene.spheres().len(), 256);
     }
 
     #[test]
@@ -1203,7 +1527,7 @@ reflect = 0.1
                 "type = \"directional\"",
                 "type = \"spot\"",
                 "light[0].type",
-                "unknown variant `spot`, expected `directional` or `point`",
+                "invalid value: string \"spot\", expected \"directional\" or \"point\"",
             ),
             ("type = \"directional\"\n", "", "light[0]", "missing field `type`"),
             (

@@ -15,6 +15,14 @@ use crate::scene::material::Material;
 /// before y before z —, `e₁ = normalize(n × a)`, `e₂ = n × e₁`) a cell shows `color`
 /// where `floor(x₁/size) + floor(x₂/size)` is even and the checker colour elsewhere.
 ///
+/// A checker finer than `f32` resolves is not filtered: where `x/size` is beyond `±2³¹`
+/// (say `checker_size = 1e-30`, or a cell of 1 far out on the plane) both cell indices
+/// saturate to the same odd number (`i32::MAX`: a positive `x/size` converts to it, a
+/// negative one to `i32::MIN`, and `floor` steps that down, wrapping to `i32::MAX`), so
+/// their sum is even and the plane shows its `color` alone — one solid colour, not
+/// noise; only on an axis, where an index is exactly 0, is the sum odd. Tested by
+/// `tests/api/lit.rs`, `a_checker_finer_than_f32_resolves_draws_the_planes_colour`.
+///
 /// ```
 /// use embedded_graphics::pixelcolor::Rgb888;
 /// use embedded_raytracer::{Plane, Vec3};

@@ -482,3 +482,52 @@ fn culling_changes_no_pixel_on_random_lit_scenes() {
     }
     assert!(shadowed > 1000, "the cases have shadows on the floor: {shadowed}");
 }
+
+/// A checker far finer than a pixel and than `f32` resolves (`checker_size = 1e-30`)
+/// draws what the plane's docs say: both cell indices saturate to the same odd number,
+/// so every pixel off the plane's axes shows the plane's own colour — each pixel the
+/// one the same scene without a checker draws — and no noise.
+#[test]
+fn a_checker_finer_than_f32_resolves_draws_the_planes_colour() {
+    let (even, odd) = (Rgb888::new(220, 220, 220), Rgb888::new(40, 40, 40));
+    let floor = |checker: Option<Rgb888>, color: Rgb888| {
+        let mut s: Scene<0, 1, 1, 0> = Scene::new(Rgb888::new(20, 30, 60));
+        s.push_light(Light::directional(Vec3::new(-1.0, -2.0, -1.0), 0.8))
+            .unwrap();
+        let plane = Plane::new(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), color);
+        s.push_plane(match checker {
+            Some(c) => plane.with_checker(c, 1e-30),
+            None => plane,
+        })
+        .unwrap();
+        s
+    };
+    // Looking down at the plane's point, so all four quadrants are in view.
+    let camera = Camera::new(
+        Vec3::new(0.3, 6.0, 0.7),
+        Vec3::ZERO,
+        Vec3::new(0.0, 0.0, -1.0),
+        1.0,
+        Size::new(48, 48),
+    )
+    .unwrap();
+    let trace = |s: &Scene<0, 1, 1, 0>| {
+        let mut out = Vec::new();
+        Render::<0, Rgb888, 1, 1, 0>::new(s, &camera).trace(|x| out.push(x));
+        out
+    };
+    let (shown, plain) = (trace(&floor(Some(odd), even)), trace(&floor(None, even)));
+    let mut floor_pixels = 0;
+    for (s, e) in shown.iter().zip(&plain) {
+        if let Some(hit) = s.hit {
+            // Off the axes through the plane's point (x = 0 or z = 0 on this floor).
+            let p = camera.eye() + s.direction * hit.t;
+            if p.x.abs() < 1e-3 || p.z.abs() < 1e-3 {
+                continue;
+            }
+            floor_pixels += 1;
+        }
+        assert_eq!(s.color, e.color, "{:?}", s.pixel);
+    }
+    assert!(floor_pixels > 1000, "{floor_pixels} floor pixels");
+}

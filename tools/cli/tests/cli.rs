@@ -757,7 +757,7 @@ fn bad_new_fields_exit_2_naming_file_field_and_reason() {
             "unknown-type",
             LIT.replace("\"point\"", "\"spot\""),
             "light[1].type",
-            "unknown variant `spot`",
+            "invalid value: string \"spot\", expected \"directional\" or \"point\"",
         ),
         (
             "point-without-position",

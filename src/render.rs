@@ -4,8 +4,8 @@
 //! row buffer, no allocation.
 //!
 //! Drawing is the pipeline of the crate docs: the [`Method`] is matched once per frame
-//! (`dispatch.rs`), the frame's constants are built (`frame.rs`), and the scanline loop
-//! (`scanline.rs`) feeds the rows to a sink (`sink.rs`): the target for
+//! (`method/dispatch.rs`), the frame's constants are built (`trace/frame.rs`), and the scanline loop
+//! (`trace/scanline.rs`) feeds the rows to a sink (`output/sink.rs`): the target for
 //! [`Drawable::draw`], a callback for [`Render::trace`].
 
 use core::marker::PhantomData;

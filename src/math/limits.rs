@@ -1,5 +1,5 @@
 //! The numeric limits the constructors enforce (the camera's today), in one place that
-//! both the validation (`camera.rs`) and the error messages (`error.rs`) read.
+//! both the validation (`camera/mod.rs`) and the error messages (`error.rs`) read.
 
 use crate::math::{EDGE_TOLERANCE, UNIT_ROUNDOFF};
 

@@ -1,0 +1,192 @@
+//! The PNG, streamed in bands of rows: `Render::draw_band` traces bands on a pool of
+//! `threads` threads (it gives the same pixels for any split), the calling thread
+//! encodes them in order into one PNG stream while the pool traces the next ones. At
+//! most `2 × threads` bands are in flight, so memory is O(width × threads × BAND), not
+//! O(width × height); the bytes do not depend on the number of threads, since the
+//! encoder sees the same rows in the same order and the same chunks.
+
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use embedded_graphics::{pixelcolor::Rgb888, prelude::*};
+use embedded_raytracer::Render;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+/// Rows in a band: enough that a band's fixed cost (its first row's set-up, an adaptive
+/// sampling's shared row) is small, few enough that 8192-wide bands stay at 400 KB.
+pub const BAND: u32 = 16;
+
+/// How long a render runs before its progress bar appears.
+const QUIET_START: Duration = Duration::from_millis(500);
+
+/// What to write.
+pub struct Job {
+    pub size: Size,
+    /// Tracing threads; 1: every band on the calling thread, no pool.
+    pub threads: usize,
+    /// A progress bar on stderr (a terminal, not `--quiet`) once the render has run
+    /// for [`QUIET_START`].
+    pub progress: bool,
+}
+
+/// Renders into a PNG stream on `out`; returns the time spent tracing (the whole minus
+/// the encoder's share: with threads, the time the encoder waited for bands) and the time
+/// spent encoding and writing.
+pub fn write<const N: usize, const L: usize, const P: usize, const D: usize>(
+    render: &Render<'_, N, Rgb888, L, P, D>,
+    job: &Job,
+    out: &File,
+) -> io::Result<(Duration, Duration)> {
+    let start = Instant::now();
+    let size = job.size;
+    let mut out = BufWriter::new(out);
+    let mut encoder = png::Encoder::new(&mut out, size.width, size.height);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header()?;
+    let mut encoding = Duration::ZERO;
+    {
+        let mut stream = writer.stream_writer()?;
+        let mut progress = Progress::new(job, start);
+        let mut emit = |rows: u32, bytes: &[u8]| -> io::Result<()> {
+            let t = Instant::now();
+            stream.write_all(bytes)?;
+            encoding += t.elapsed();
+            progress.advance(rows);
+            Ok(())
+        };
+        if job.threads <= 1 {
+            let mut pixels = Vec::new();
+            for k in 0..size.height.div_ceil(BAND) {
+                let rows = band_rows(k, size.height);
+                let bytes = trace_band(render, size.width, rows.clone(), &mut pixels)?;
+                emit(rows.len() as u32, &bytes)?;
+            }
+        } else {
+            in_parallel(render, size, job.threads, &mut emit)?;
+        }
+        progress.finish();
+        let t = Instant::now();
+        stream.finish()?;
+        encoding += t.elapsed();
+    }
+    let t = Instant::now();
+    writer.finish()?;
+    out.flush()?;
+    encoding += t.elapsed();
+    Ok((start.elapsed().saturating_sub(encoding), encoding))
+}
+
+/// Band `k`'s rows.
+fn band_rows(k: u32, height: u32) -> std::ops::Range<u32> {
+    k * BAND..((k + 1) * BAND).min(height)
+}
+
+/// Traces `rows` into `pixels` (reused) and returns their RGB bytes.
+fn trace_band<const N: usize, const L: usize, const P: usize, const D: usize>(
+    render: &Render<'_, N, Rgb888, L, P, D>,
+    width: u32,
+    rows: std::ops::Range<u32>,
+    pixels: &mut Vec<Rgb888>,
+) -> io::Result<Vec<u8>> {
+    pixels.clear();
+    pixels.resize(width as usize * rows.len(), Rgb888::BLACK);
+    render
+        .draw_band(rows, pixels)
+        .map_err(|e| io::Error::other(format!("the render refused a band: {e:?}")))?;
+    Ok(pixels.iter().flat_map(|c| [c.r(), c.g(), c.b()]).collect())
+}
+
+/// The bands traced on a pool of `threads` threads and handed to `emit` in order, on
+/// the calling thread (which the pool does not count: it encodes while they trace).
+fn in_parallel<const N: usize, const L: usize, const P: usize, const D: usize>(
+    render: &Render<'_, N, Rgb888, L, P, D>,
+    size: Size,
+    threads: usize,
+    emit: &mut impl FnMut(u32, &[u8]) -> io::Result<()>,
+) -> io::Result<()> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .thread_name(|i| format!("ertrace-trace-{i}"))
+        .build()
+        .map_err(io::Error::other)?;
+    let bands = size.height.div_ceil(BAND);
+    let window = (2 * threads).min(bands as usize) as u32;
+    let (done, finished) = mpsc::channel::<(u32, io::Result<Vec<u8>>)>();
+    pool.in_place_scope(|scope| {
+        let spawn = |k: u32| {
+            let done = done.clone();
+            scope.spawn(move |_| {
+                let rows = band_rows(k, size.height);
+                let bytes = trace_band(render, size.width, rows, &mut Vec::new());
+                // The receiver is gone only when the encoder stopped on an error.
+                let _ = done.send((k, bytes));
+            });
+        };
+        (0..window).for_each(spawn);
+        let mut next = window;
+        let mut waiting = BTreeMap::new();
+        for k in 0..bands {
+            let bytes = loop {
+                if let Some(bytes) = waiting.remove(&k) {
+                    break bytes;
+                }
+                let (i, bytes) = finished.recv().map_err(io::Error::other)?;
+                waiting.insert(i, bytes);
+            };
+            emit(band_rows(k, size.height).len() as u32, &bytes?)?;
+            if next < bands {
+                spawn(next);
+                next += 1;
+            }
+        }
+        Ok(())
+    })
+}
+
+/// The progress bar: rows done, elapsed and remaining time, drawn on stderr once the
+/// render has run for [`QUIET_START`] (never when `Job::progress` is off).
+struct Progress {
+    bar: Option<ProgressBar>,
+    shown: bool,
+    start: Instant,
+}
+
+impl Progress {
+    fn new(job: &Job, start: Instant) -> Self {
+        let bar = job.progress.then(|| {
+            let bar =
+                ProgressBar::with_draw_target(Some(u64::from(job.size.height)), ProgressDrawTarget::hidden());
+            if let Ok(style) = ProgressStyle::with_template(
+                "{elapsed_precise} [{wide_bar}] {pos}/{len} rows, {eta_precise} left",
+            ) {
+                bar.set_style(style);
+            }
+            bar
+        });
+        Self {
+            bar,
+            shown: false,
+            start,
+        }
+    }
+
+    fn advance(&mut self, rows: u32) {
+        let Some(bar) = &self.bar else { return };
+        bar.inc(u64::from(rows));
+        if !self.shown && self.start.elapsed() >= QUIET_START {
+            bar.set_draw_target(ProgressDrawTarget::stderr());
+            bar.enable_steady_tick(Duration::from_secs(1));
+            self.shown = true;
+        }
+    }
+
+    fn finish(&mut self) {
+        if let Some(bar) = self.bar.take() {
+            bar.finish_and_clear();
+        }
+    }
+}

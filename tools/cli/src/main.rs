@@ -111,7 +111,7 @@ fn run() -> Result<(), String> {
     let bound = cost::Bound::of(&file, camera.size(), sampling);
     let quiet = args.quiet;
     if !quiet && bound.cpu_seconds() > f64::from(cost::WARN_SECONDS) {
-        eprintln!("{}", bound.estimate(threads));
+        let _ = writeln!(io::stderr(), "{}", bound.estimate(threads));
     }
     let show_progress = !quiet && io::stderr().is_terminal();
     let job = png_out::Job {

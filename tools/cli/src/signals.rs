@@ -3,6 +3,7 @@
 //! (130, 143, 129), as a shell reports a process the signal killed.
 
 use std::fs;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard};
 
@@ -49,7 +50,8 @@ pub fn install(output: &Path) {
             },
             None => "no temporary file was open".to_string(),
         };
-        eprintln!("\nertrace: interrupted by {name}: {what}");
+        // A closed stderr must not stop the exit: no panic on a failed write here.
+        let _ = writeln!(std::io::stderr(), "\nertrace: interrupted by {name}: {what}");
         std::process::exit(128 + signal);
     };
     let _ = std::thread::Builder::new()

@@ -1217,3 +1217,334 @@ fn arithmetic_flag() {
         "--arithmetic: unknown arithmetic: expected one of f32, integer",
     );
 }
+
+// --- Every core, the same bytes ---
+
+/// The PNG's bytes are the same at 1, 2, 3 and 7 tracing threads for every standard
+/// scene, with centre, grid and adaptive sampling, in f32 and the integer arithmetic.
+/// The size is shrunk (`--size`) to keep a debug build within a minute; 72 rows are
+/// four whole bands of 16 rows and a partial one, so threads finish out of order.
+#[test]
+fn the_png_is_the_same_for_every_thread_count() {
+    let dir = scratch("threads");
+    let mut compared = 0;
+    for scene in standard::SCENES.iter().chain(&standard::FEATURE_SCENES) {
+        let path = standard::path(scene);
+        for sampling in ["center", "grid:4", "adaptive:4"] {
+            for arithmetic in ["f32", "integer"] {
+                let png = |threads: &str| {
+                    let out = dir.join(format!("{scene}-{threads}.png"));
+                    let o = run(&[
+                        &path,
+                        "--size",
+                        "40x72",
+                        "--sampling",
+                        sampling,
+                        "--arithmetic",
+                        arithmetic,
+                        "--threads",
+                        threads,
+                        "--output",
+                        out.to_str().unwrap(),
+                    ]);
+                    assert_rendered(&o);
+                    assert!(
+                        String::from_utf8_lossy(&o.stdout).contains(&format!("{threads} thread")),
+                        "{}",
+                        String::from_utf8_lossy(&o.stdout)
+                    );
+                    std::fs::read(out).unwrap()
+                };
+                let one = png("1");
+                assert_eq!(png_header(&one).0, 40);
+                for threads in ["2", "3", "7"] {
+                    assert!(
+                        png(threads) == one,
+                        "{scene} {sampling} {arithmetic}: {threads} threads differ from 1"
+                    );
+                    compared += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(compared, 7 * 3 * 2 * 3);
+}
+
+// --- Time: the estimate, and what a signal leaves ---
+
+/// Spawns the CLI on the worst accepted scene (hours in a debug build), output into
+/// `dir`, stdout and stderr piped.
+fn spawn_worst_case(dir: &Path, extra: &[&str]) -> std::process::Child {
+    Command::new(render_bin())
+        .current_dir(ROOT)
+        .args([
+            "docs/cli_worst_case.toml",
+            "--output",
+            dir.join("worst.png").to_str().unwrap(),
+        ])
+        .args(extra)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+/// The names in `dir`.
+fn names_in(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect()
+}
+
+/// Waits (up to a minute) until `dir` holds a file whose name starts with `prefix`.
+fn wait_for_file(dir: &Path, prefix: &str) -> bool {
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while std::time::Instant::now() < deadline {
+        if names_in(dir).iter().any(|n| n.starts_with(prefix)) {
+            return true;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    false
+}
+
+fn send(child: &std::process::Child, signal: &str) {
+    let status = Command::new("kill")
+        .args([signal, &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success(), "kill {signal}");
+}
+
+/// SIGINT and SIGTERM during a render: the temporary file is removed, stderr says so,
+/// the exit code is 130 / 143, and the output was not created.
+#[cfg(unix)]
+#[test]
+fn a_signal_removes_the_temporary_file() {
+    for (signal, name, code) in [("-INT", "SIGINT", 130), ("-TERM", "SIGTERM", 143)] {
+        let dir = scratch(&format!("signal-{name}"));
+        let child = spawn_worst_case(&dir, &["--threads", "1", "--quiet"]);
+        let seen = wait_for_file(&dir, ".render-");
+        send(&child, signal);
+        let o = child.wait_with_output().unwrap();
+        assert!(seen, "{name}: no temporary file appeared: {}", stderr(&o));
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(code), "{name}: {err}");
+        assert!(err.contains(&format!("interrupted by {name}")), "{err}");
+        assert!(err.contains("removed the unfinished temporary file"), "{err}");
+        assert!(err.contains("worst.png was not written"), "{err}");
+        assert!(!err.contains(".render-"), "the temporary file is named: {err}");
+        assert!(names_in(&dir).is_empty(), "{name} left {:?}", names_in(&dir));
+    }
+}
+
+/// The bound is printed before a render that may take long (the worst accepted scene),
+/// not before a short one (the lab scene), nor with `--quiet`.
+#[cfg(unix)]
+#[test]
+fn the_estimate_is_printed_before_a_long_render_only() {
+    let dir = scratch("estimate");
+    let o = run(&[
+        "scenes/lab.toml",
+        "--output",
+        dir.join("lab.png").to_str().unwrap(),
+    ]);
+    assert_rendered(&o);
+    assert!(!stderr(&o).contains("estimate"), "{}", stderr(&o));
+    assert!(stderr(&o).is_empty(), "stderr on a pipe: {}", stderr(&o));
+
+    use std::io::{BufRead, BufReader};
+    let mut child = spawn_worst_case(&dir, &["--threads", "1"]);
+    let mut line = String::new();
+    // Kept open until the child has exited: its message on the signal goes there too.
+    let mut err = BufReader::new(child.stderr.take().unwrap());
+    err.read_line(&mut line).unwrap();
+    send(&child, "-TERM");
+    let o = child.wait_with_output().unwrap();
+    drop(err);
+    assert_eq!(o.status.code(), Some(143));
+    assert!(line.starts_with("ertrace: estimate: at most "), "{line}");
+    // 8192 x 8192 pixels, one ray, 256 spheres each.
+    assert!(
+        line.contains("67108864 pixels x 1 ray x 256 object tests"),
+        "{line}"
+    );
+    assert!(!names_in(&dir).iter().any(|n| n.starts_with(".render-")));
+
+    let mut child = spawn_worst_case(&dir, &["--threads", "1", "--quiet"]);
+    assert!(wait_for_file(&dir, ".render-"));
+    send(&child, "-INT");
+    let mut err = String::new();
+    use std::io::Read;
+    child.stderr.take().unwrap().read_to_string(&mut err).unwrap();
+    assert_eq!(child.wait().unwrap().code(), Some(130), "{err}");
+    assert!(!err.contains("ertrace: estimate"), "--quiet: {err}");
+}
+
+/// What can be checked before tracing is: on the worst accepted scene (hours in a debug
+/// build) a name ending in `/` and a missing directory fail at once, exit 2, naming the
+/// output and never the temporary file, and nothing is created.
+#[test]
+fn a_bad_output_path_fails_before_tracing() {
+    let dir = scratch("early");
+    for (out, expect) in [
+        (dir.join("late.png/"), "ends with /"),
+        (dir.join("no-such-dir/x.png"), "does not exist"),
+    ] {
+        let mut out_s = out.to_str().unwrap().to_string();
+        if expect == "ends with /" && !out_s.ends_with('/') {
+            out_s.push('/');
+        }
+        let mut child = Command::new(render_bin())
+            .current_dir(ROOT)
+            .args(["docs/cli_worst_case.toml", "--output", &out_s])
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+        while child.try_wait().unwrap().is_none() {
+            if std::time::Instant::now() > deadline {
+                let _ = child.kill();
+                panic!("{out_s}: still tracing after a minute");
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        let o = child.wait_with_output().unwrap();
+        assert_refused(&o, expect);
+        let err = stderr(&o);
+        assert!(err.contains(&out_s), "the output is not named: {err}");
+        assert!(!err.contains(".render-"), "the temporary file is named: {err}");
+        assert!(names_in(&dir).is_empty(), "{:?}", names_in(&dir));
+    }
+}
+
+/// The read-only rule asks the system whether this user may write the file, as the
+/// shell does: as root, a world-writable directory holding a root-owned 0644 file; as
+/// `nobody`, `echo x > o.png` fails, and so does the CLI without `--force`; with it the
+/// file is replaced by a rename and belongs to `nobody`. An unwritable directory is
+/// refused before tracing. Needs root, the user `nobody` and `setpriv` or `runuser`.
+#[cfg(unix)]
+#[test]
+fn a_file_this_user_may_not_write_is_refused_unless_forced() {
+    use std::os::unix::fs::{MetadataExt, PermissionsExt};
+    let probe = scratch("as-nobody-probe");
+    if !is_root(&probe) {
+        eprintln!("skipped: needs root (to make a file that another user may not write)");
+        return;
+    }
+    let nobody = Command::new("id").args(["-u", "nobody"]).output().unwrap();
+    if !nobody.status.success() {
+        eprintln!("skipped: no user `nobody`");
+        return;
+    }
+    let nobody_uid: u32 = String::from_utf8_lossy(&nobody.stdout).trim().parse().unwrap();
+    let as_nobody: Vec<String> = if Command::new("setpriv").arg("--version").output().is_ok() {
+        ["setpriv", "--reuid=nobody", "--regid=nogroup", "--clear-groups"]
+            .map(String::from)
+            .to_vec()
+    } else if Command::new("runuser").arg("--version").output().is_ok() {
+        ["runuser", "-u", "nobody", "--"].map(String::from).to_vec()
+    } else {
+        eprintln!("skipped: neither setpriv nor runuser is installed");
+        return;
+    };
+    // Under /tmp: the repository's directories need not be open to `nobody`.
+    let dir = std::path::PathBuf::from(format!(
+        "/tmp/embedded-raytracer-cli-nobody-{}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir(&dir).unwrap();
+    let dir = Scratch(dir);
+    std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o777)).unwrap();
+    let bin = dir.join("ertrace");
+    std::fs::copy(render_bin(), &bin).unwrap();
+    std::fs::set_permissions(&bin, std::fs::Permissions::from_mode(0o755)).unwrap();
+    std::fs::write(dir.join("s.toml"), GOOD).unwrap();
+    std::fs::write(dir.join("o.png"), b"X").unwrap();
+    std::fs::set_permissions(dir.join("o.png"), std::fs::Permissions::from_mode(0o644)).unwrap();
+    std::fs::create_dir(dir.join("closed")).unwrap();
+    std::fs::set_permissions(dir.join("closed"), std::fs::Permissions::from_mode(0o755)).unwrap();
+    let run_as_nobody = |args: &[&str]| {
+        Command::new(&as_nobody[0])
+            .args(&as_nobody[1..])
+            .args(args)
+            .current_dir(&*dir)
+            .output()
+            .unwrap()
+    };
+    // The shell's answer.
+    let shell = run_as_nobody(&["sh", "-c", "echo x > o.png"]);
+    assert!(!shell.status.success(), "nobody could write o.png");
+    // The CLI's: the same, without --force.
+    let ertrace = bin.to_str().unwrap();
+    assert_refused(
+        &run_as_nobody(&[ertrace, "s.toml", "-o", "o.png"]),
+        "read-only for this user",
+    );
+    assert_eq!(std::fs::read(dir.join("o.png")).unwrap(), b"X");
+    assert_eq!(std::fs::metadata(dir.join("o.png")).unwrap().uid(), 0);
+    // An unwritable directory: refused before tracing, naming the output.
+    assert_refused(
+        &run_as_nobody(&[ertrace, "s.toml", "-o", "closed/new.png"]),
+        "closed/new.png: cannot create a file in the directory closed",
+    );
+    assert!(!dir.join("closed/new.png").exists());
+    // With --force the file is replaced by a rename: it now belongs to nobody, as
+    // `--help` says.
+    assert_rendered(&run_as_nobody(&[ertrace, "s.toml", "-o", "o.png", "--force"]));
+    let meta = std::fs::metadata(dir.join("o.png")).unwrap();
+    assert!(is_png(&std::fs::read(dir.join("o.png")).unwrap()));
+    assert_eq!(meta.uid(), nobody_uid);
+    assert_eq!(meta.mode() & 0o7777, 0o644);
+}
+
+/// `--version`, `--completions SHELL`, and the choices `--help` lists from the
+/// kernel's tables.
+#[test]
+fn version_completions_and_listed_choices() {
+    let o = run(&["--version"]);
+    assert_rendered(&o);
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout).trim(),
+        format!("ertrace {}", env!("CARGO_PKG_VERSION"))
+    );
+    for shell in ["bash", "zsh", "fish"] {
+        let o = run(&["--completions", shell]);
+        assert_rendered(&o);
+        let script = String::from_utf8_lossy(&o.stdout);
+        assert!(script.contains("ertrace"), "{shell}: {script}");
+        assert!(
+            script.contains("threads") && script.contains("world-space"),
+            "{shell}: {script}"
+        );
+    }
+    assert_refused(&run(&["--completions", "tcsh"]), "--completions");
+    let help = String::from_utf8_lossy(&run(&["--help"]).stdout).into_owned();
+    use embedded_raytracer::{Arithmetic, Sampling, SphereTest, Sqrt, Stepping};
+    let names = [Stepping::NAMES, SphereTest::NAMES, Sqrt::NAMES, Arithmetic::NAMES];
+    for table in names {
+        assert!(help.contains(&table.join(", ")), "{table:?} not listed: {help}");
+    }
+    let sampling: Vec<String> = Sampling::ALL.iter().map(|s| s.to_string()).collect();
+    assert!(help.contains(&sampling.join(", ")), "{help}");
+    assert!(help.contains("Worst case proven from the limits"), "{help}");
+    assert!(help.contains("--force"), "{help}");
+    assert!(help.contains("belongs to whoever ran ertrace"), "{help}");
+    // Errors: the flag and the reason on one line, with clap's suggestion.
+    assert_refused(
+        &run(&["scenes/lab.toml", "--setpping", "direct"]),
+        "unknown flag `--setpping` (did you mean `--stepping`?)",
+    );
+    assert_refused(
+        &run(&["scenes/lab.toml", "--threads", "0"]),
+        "--threads: expected a number",
+    );
+    assert_refused(
+        &run(&["scenes/lab.toml", "--size", "12"]),
+        "--size: expected WxH, got `12`",
+    );
+}

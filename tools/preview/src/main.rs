@@ -45,6 +45,8 @@
 //! first frame handed to the window is written and the program exits.
 
 use std::path::{Path, PathBuf};
+
+use clap::builder::{PossibleValuesParser, TypedValueParser};
 use std::process::ExitCode;
 use std::time::{Duration, Instant, SystemTime};
 
@@ -435,92 +437,118 @@ struct Args {
     frames: Option<u32>,
 }
 
-fn parse_args(mut args: impl Iterator<Item = String>) -> Result<Args, String> {
-    let mut a = Args {
-        scene: PathBuf::from("scenes/lab.toml"),
-        model: Model::Rgb888,
-        size: None,
-        scale: None,
-        method: Method::default(),
-        sampling: Sampling::Center,
-        bayer: Bayer::Eight,
-        theme: BinaryColorTheme::OledBlue,
-        diff: false,
-        overlay: true,
-        screenshot: None,
-        frames: None,
-    };
-    let mut scene_given = false;
-    while let Some(arg) = args.next() {
-        let mut value = |flag: &str| args.next().ok_or_else(|| format!("{flag} needs a value"));
-        match arg.as_str() {
-            "--display" => a.model = Model::parse(&value(&arg)?)?,
-            "--size" => {
-                let v = value(&arg)?;
-                let (w, h) = v
-                    .split_once('x')
-                    .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
-                    .ok_or_else(|| format!("--size: expected WxH, got `{v}`"))?;
-                a.size = Some(Size::new(w, h));
-            }
-            "--scale" => {
-                let v = value(&arg)?;
-                let n: u32 = v
-                    .parse()
-                    .map_err(|_| format!("--scale: expected a number, got `{v}`"))?;
-                if !(1..=16).contains(&n) {
-                    return Err("--scale: must be 1 to 16".into());
-                }
-                a.scale = Some(n);
-            }
-            "--sampling" => {
-                let v = value(&arg)?;
-                a.sampling = v.parse().map_err(|e| format!("--sampling: {e}, got `{v}`"))?;
-            }
-            "--bayer" => {
-                a.bayer = match value(&arg)?.as_str() {
-                    "4" => Bayer::Four,
-                    "8" => Bayer::Eight,
-                    v => return Err(format!("--bayer: expected 4 or 8, got `{v}`")),
-                }
-            }
-            "--theme" => {
-                a.theme = match value(&arg)?.as_str() {
-                    "oled-blue" => BinaryColorTheme::OledBlue,
-                    "oled-white" => BinaryColorTheme::OledWhite,
-                    v => return Err(format!("--theme: expected oled-blue or oled-white, got `{v}`")),
-                }
-            }
-            "--stepping" => {
-                a.method.stepping = value(&arg)?.parse().map_err(|e| format!("--stepping: {e}"))?
-            }
-            "--sphere-test" => {
-                a.method.sphere_test = value(&arg)?.parse().map_err(|e| format!("--sphere-test: {e}"))?
-            }
-            "--sqrt" => a.method.sqrt = value(&arg)?.parse().map_err(|e| format!("--sqrt: {e}"))?,
-            "--diff" => a.diff = true,
-            "--no-overlay" => a.overlay = false,
-            "--screenshot" => a.screenshot = Some(PathBuf::from(value(&arg)?)),
-            "--frames" => {
-                let v = value(&arg)?;
-                let n: u32 = v
-                    .parse()
-                    .map_err(|_| format!("--frames: expected a number, got `{v}`"))?;
-                a.frames = Some(n.max(1));
-            }
-            "--help" | "-h" => return Err(usage()),
-            flag if flag.starts_with('-') => return Err(format!("unknown flag `{flag}`")),
-            path if !scene_given => {
-                a.scene = PathBuf::from(path);
-                scene_given = true;
-            }
-            extra => return Err(format!("unexpected argument `{extra}`")),
-        }
+/// The flags as clap parses them; [`parse_args`] turns them into [`Args`]. Every
+/// choice is listed in `--help`: the display models from [`Model::ALL`], the method
+/// axes from the kernel's own tables (`Stepping::NAMES`, …), the samplings from
+/// `Sampling::ALL`.
+#[derive(clap::Parser)]
+#[command(
+    name = "ertrace-preview",
+    version,
+    about = "A scene file in the embedded-graphics simulator's window, through a display model \
+(keys: see docs/cli.md); --screenshot renders one frame without a display server.",
+    override_usage = usage_line(),
+)]
+struct Cli {
+    /// The scene file (TOML)
+    #[arg(value_name = "SCENE.toml", default_value = "scenes/lab.toml")]
+    scene: PathBuf,
+    /// The display model
+    #[arg(long, value_name = "MODEL", value_parser = PossibleValuesParser::new(Model::ALL.map(Model::name))
+        .try_map(|s| Model::parse(&s)))]
+    display: Option<Model>,
+    /// The display's resolution, instead of the scene file's
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    size: Option<Size>,
+    /// Window pixels per display pixel (1 to 16)
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=16))]
+    scale: Option<u32>,
+    /// Rays per pixel
+    #[arg(long, value_parser = PossibleValuesParser::new(sampling_names()).try_map(|s| s.parse::<Sampling>()))]
+    sampling: Option<Sampling>,
+    /// Bayer matrix of the dithered models
+    #[arg(long, value_parser = PossibleValuesParser::new(["4", "8"]).map(|s| if s == "4" { Bayer::Four } else { Bayer::Eight }))]
+    bayer: Option<Bayer>,
+    /// OLED theme of the binary models
+    #[arg(long, value_parser = PossibleValuesParser::new(["oled-blue", "oled-white"])
+        .map(|s| if s == "oled-white" { BinaryColorTheme::OledWhite } else { BinaryColorTheme::OledBlue }))]
+    theme: Option<BinaryColorTheme>,
+    /// The starting method's stepping
+    #[arg(long, value_parser = PossibleValuesParser::new(Stepping::NAMES).try_map(|s| s.parse::<Stepping>()))]
+    stepping: Option<Stepping>,
+    /// The starting method's ray–sphere test
+    #[arg(long, value_parser = PossibleValuesParser::new(SphereTest::NAMES).try_map(|s| s.parse::<SphereTest>()))]
+    sphere_test: Option<SphereTest>,
+    /// The starting method's square root
+    #[arg(long, value_parser = PossibleValuesParser::new(Sqrt::NAMES).try_map(|s| s.parse::<Sqrt>()))]
+    sqrt: Option<Sqrt>,
+    /// Start in the difference view
+    #[arg(long)]
+    diff: bool,
+    /// No status bar: the window shows exactly the display
+    #[arg(long)]
+    no_overlay: bool,
+    /// Write what the window shows to OUT.png and exit
+    #[arg(long, value_name = "OUT.png")]
+    screenshot: Option<PathBuf>,
+    /// With --screenshot: open the window, show N frames, write the last
+    #[arg(long, value_name = "N", requires = "screenshot", value_parser = clap::value_parser!(u32))]
+    frames: Option<u32>,
+}
+
+/// Every sampling's name (`Sampling::ALL` as `Display` writes them), for clap, which
+/// keeps `&'static str`s: seven short strings, made once per run.
+fn sampling_names() -> Vec<&'static str> {
+    Sampling::ALL
+        .iter()
+        .map(|s| &*Box::leak(s.to_string().into_boxed_str()))
+        .collect()
+}
+
+/// `--size`'s value.
+fn parse_size(v: &str) -> Result<Size, String> {
+    v.split_once('x')
+        .and_then(|(w, h)| Some(Size::new(w.parse().ok()?, h.parse().ok()?)))
+        .ok_or_else(|| format!("expected WxH, got `{v}`"))
+}
+
+/// The usage line for clap (without the leading `usage: `).
+fn usage_line() -> String {
+    usage().trim_start_matches("usage: ").to_string()
+}
+
+/// The flags after the program's name.
+fn parse_args<T: Into<std::ffi::OsString> + Clone>(
+    args: impl IntoIterator<Item = T>,
+) -> Result<Args, clap::Error> {
+    use clap::Parser;
+    let cli = Cli::try_parse_from(
+        std::iter::once(std::ffi::OsString::from("ertrace-preview")).chain(args.into_iter().map(Into::into)),
+    )?;
+    let mut method = Method::default();
+    if let Some(s) = cli.stepping {
+        method.stepping = s;
     }
-    if a.frames.is_some() && a.screenshot.is_none() {
-        return Err("--frames needs --screenshot".into());
+    if let Some(s) = cli.sphere_test {
+        method.sphere_test = s;
     }
-    Ok(a)
+    if let Some(s) = cli.sqrt {
+        method.sqrt = s;
+    }
+    Ok(Args {
+        scene: cli.scene,
+        model: cli.display.unwrap_or(Model::Rgb888),
+        size: cli.size,
+        scale: cli.scale,
+        method,
+        sampling: cli.sampling.unwrap_or(Sampling::Center),
+        bayer: cli.bayer.unwrap_or(Bayer::Eight),
+        theme: cli.theme.unwrap_or(BinaryColorTheme::OledBlue),
+        diff: cli.diff,
+        overlay: !cli.no_overlay,
+        screenshot: cli.screenshot,
+        frames: cli.frames.map(|n| n.max(1)),
+    })
 }
 
 /// The program state.
@@ -896,7 +924,29 @@ fn save(screen: &SimulatorDisplay<Rgb888>, settings: &OutputSettings, path: &Pat
 }
 
 fn run() -> Result<(), String> {
-    let args = parse_args(std::env::args().skip(1))?;
+    let args = match parse_args(std::env::args_os().skip(1)) {
+        Ok(args) => args,
+        Err(e)
+            if matches!(
+                e.kind(),
+                clap::error::ErrorKind::DisplayHelp | clap::error::ErrorKind::DisplayVersion
+            ) =>
+        {
+            print!("{}", e.render());
+            return Ok(());
+        }
+        // One line: the flag and the reason (clap's first paragraph), exit code 2.
+        Err(e) => {
+            let text = e.render().to_string();
+            let first: Vec<&str> = text
+                .lines()
+                .take_while(|l| !l.trim().is_empty())
+                .map(str::trim)
+                .collect();
+            let first = first.join(" ");
+            return Err(first.strip_prefix("error: ").unwrap_or(&first).to_string());
+        }
+    };
     let mut app = App::new(&args)?;
     // Default scale: a window about 640 pixels wide.
     let scale = args.scale.unwrap_or((640 / app.size.width).clamp(1, 8));

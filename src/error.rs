@@ -339,6 +339,74 @@ impl fmt::Display for SceneError {
 
 impl core::error::Error for SceneError {}
 
+/// An object of a scene, as a [`FrameError`] names it: its index among the scene's
+/// spheres, planes or lights (the order they were pushed, the order of a scene file's
+/// `[[sphere]]`, `[[plane]]` and `[[light]]` tables).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum ObjectRef {
+    /// `scene.spheres()[i]`.
+    Sphere(usize),
+    /// `scene.planes()[i]`.
+    Plane(usize),
+    /// `scene.lights()[i]`.
+    Light(usize),
+}
+
+impl fmt::Display for ObjectRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            ObjectRef::Sphere(i) => write!(f, "sphere {i}"),
+            ObjectRef::Plane(i) => write!(f, "plane {i}"),
+            ObjectRef::Light(i) => write!(f, "light {i}"),
+        }
+    }
+}
+
+/// Why a frame cannot be drawn exactly in `f32`: what
+/// [`Render::check`](crate::Render::check) returns, and
+/// [`Render::draw_band`](crate::Render::draw_band) as [`BandError::Frame`]. Such a frame
+/// is not drawn: [`Drawable::draw`](embedded_graphics::Drawable::draw) leaves the
+/// target as it was, rather than draw a wrong picture.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub enum FrameError {
+    /// The object's distance from the eye (a sphere's centre, a plane's point, a point
+    /// light) or its radius is beyond `f32` (the difference of two finite coordinates
+    /// overflowed).
+    NotFinite(ObjectRef),
+    /// No one power of two brings both objects' sizes — each its largest coordinate
+    /// relative to the eye or its radius — into the range a frame computes exactly in,
+    /// `[2⁻⁴⁰, 2⁵⁰)`: `far` is more than about 2⁹⁰ (10²⁷) times `near`. An object the
+    /// frame can prove no ray meets does not count (a sphere outside the view of a
+    /// scene without lights, planes or mirrors, with one ray a pixel).
+    Magnitudes {
+        /// The object of the largest size.
+        far: ObjectRef,
+        /// The object of the smallest size.
+        near: ObjectRef,
+    },
+}
+
+impl fmt::Display for FrameError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            FrameError::NotFinite(o) => {
+                write!(f, "{o}: its distance from the eye is beyond f32's range")
+            }
+            FrameError::Magnitudes { far, near } => write!(
+                f,
+                "{far} is more than 2^90 times farther from the eye (or larger) than {near}: \
+                 f32 cannot draw both exactly in one frame; move {far} nearer or leave it out"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for FrameError {}
+
 /// Why [`Render::draw_band`](crate::Render::draw_band) refused a band.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -360,6 +428,8 @@ pub enum BandError {
         /// The buffer's length.
         found: usize,
     },
+    /// The frame cannot be drawn exactly ([`FrameError`]); the buffer keeps what it held.
+    Frame(FrameError),
 }
 
 impl fmt::Display for BandError {
@@ -373,6 +443,7 @@ impl fmt::Display for BandError {
                 f,
                 "the band buffer holds {found} pixels; the rows need exactly {expected}"
             ),
+            BandError::Frame(e) => fmt::Display::fmt(&e, f),
         }
     }
 }

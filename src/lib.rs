@@ -157,8 +157,8 @@ pub use trace::shade;
 
 pub use camera::{Camera, CameraParams};
 pub use error::{
-    BandError, CameraError, CameraParam, IntegerError, LightError, MaterialError, ParseMethodError,
-    PlaneError, SceneError, SettingsError, SphereError,
+    BandError, CameraError, CameraParam, FrameError, IntegerError, LightError, MaterialError, ObjectRef,
+    ParseMethodError, PlaneError, SceneError, SettingsError, SphereError,
 };
 pub use math::limits::{MAX_FOV, MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
 pub use math::vec3::Vec3;

@@ -15,7 +15,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
 use crate::camera::Camera;
-use crate::error::{BandError, IntegerError};
+use crate::error::{BandError, FrameError, IntegerError};
 use crate::integer;
 use crate::math::SqrtFn;
 use crate::method::dispatch::{dispatch, Visit};
@@ -205,7 +205,8 @@ impl<const N: usize, C: PixelColor + From<Rgb888>, const L: usize, const P: usiz
     ///
     /// [`BandError::Rows`] if `rows` is empty or reaches past the image's last row;
     /// [`BandError::BufferSize`] if `buf` does not hold exactly `width × (j1 − j0)`
-    /// pixels. Nothing is traced then.
+    /// pixels; [`BandError::Frame`] where the frame cannot be drawn exactly (see
+    /// [`Render::check`]). Nothing is traced then, and `buf` keeps what it held.
     // Inlined, as `draw` is: where the method and sampling are constants (the usual
     // `Render::new`), the one dispatch then links that method's code alone, not every
     // combination of the axes.
@@ -213,7 +214,10 @@ impl<const N: usize, C: PixelColor + From<Rgb888>, const L: usize, const P: usiz
     pub fn draw_band(&self, rows: core::ops::Range<u32>, buf: &mut [C]) -> Result<(), BandError> {
         let (band, mut sink) = self.band(rows, buf)?;
         let Ok(()) = self.render(band, Point::zero(), &mut sink);
-        Ok(())
+        match sink.refused {
+            None => Ok(()),
+            Some(why) => Err(BandError::Frame(why)),
+        }
     }
 
     /// [`Render::draw_band`] with the integer kernel alone, as [`Render::draw_integer`]
@@ -304,6 +308,7 @@ impl<const N: usize, C: PixelColor + From<Rgb888>, const L: usize, const P: usiz
             buf,
             width: size.width,
             j0: rows.start,
+            refused: None,
         };
         Ok((band, sink))
     }
@@ -435,6 +440,40 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
         }
     }
 
+    /// Whether the frame can be drawn exactly, decided as a draw decides it (once per
+    /// frame, from the scene, camera, method, options and sampling; no pixel is
+    /// traced): `Err` where [`Drawable::draw`] would leave the target as it was and
+    /// [`Render::draw_band`] return [`BandError::Frame`], rather than draw a wrong
+    /// picture — objects whose sizes no one `f32` frame can hold (see [`FrameError`]).
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::Rgb888;
+    /// use embedded_raytracer::{Camera, FrameError, Light, ObjectRef, Render, Scene, Sphere, Vec3};
+    ///
+    /// let camera = Camera::new(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), 1.0,
+    ///     embedded_graphics::geometry::Size::new(16, 16))?;
+    /// let mut scene: Scene<1, 1> = Scene::new(Rgb888::new(0, 0, 0));
+    /// scene.push(Sphere::new(Vec3::ZERO, 1.0, Rgb888::new(255, 0, 0)))?;
+    /// assert_eq!(Render::<_, Rgb888, 1>::new(&scene, &camera).check(), Ok(()));
+    /// // A lamp 10³⁰ away: the sphere's squares would be subnormal in any frame that holds it.
+    /// scene.push_light(Light::point(Vec3::new(1e30, 1e30, 1e30), 1.0))?;
+    /// assert_eq!(
+    ///     Render::<_, Rgb888, 1>::new(&scene, &camera).check(),
+    ///     Err(FrameError::Magnitudes { far: ObjectRef::Light(0), near: ObjectRef::Sphere(0) }),
+    /// );
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// The frame's [`FrameError`].
+    pub fn check(&self) -> Result<(), FrameError> {
+        if self.arithmetic() == Arithmetic::Integer {
+            return Ok(());
+        }
+        dispatch(self.method, Check(self))
+    }
+
     /// Whether the integer kernel can draw this kind of render at all: a scene without
     /// lights, planes or mirrors, one ray a pixel (its rule then decides per frame).
     fn integer_kind(&self) -> bool {
@@ -458,6 +497,24 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
                 integer: self.method.arithmetic == Arithmetic::Integer,
             },
         )
+    }
+}
+
+/// [`Render::check`], as a visitor of the method's strategy types: the frame's scale
+/// as the render would decide it.
+struct Check<'r, 'a, const N: usize, C, const L: usize, const P: usize, const D: usize>(
+    &'r Render<'a, N, C, L, P, D>,
+);
+
+impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Visit
+    for Check<'_, '_, N, C, L, P, D>
+{
+    type Output = Result<(), FrameError>;
+    fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Self::Output {
+        let r = self.0;
+        // Only a Lab #1 frame of one ray a pixel culls for its scale (as `lab1.rs` does).
+        let cull = !Scene::<N, L, P, D>::FEATURES && r.sampling == Sampling::Center;
+        crate::trace::frame::frame_scale::<N, L, P, D, S, T>(r.scene, r.camera, r.options, cull).map(|_| ())
     }
 }
 

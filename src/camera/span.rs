@@ -90,6 +90,71 @@ impl Silhouette {
         kx: 0.0,
     });
 
+    /// Culls everything: an ellipse with `h0 < 0`, which no row's cut reaches
+    /// (`hw² = h0·(1 + 2⁻¹⁶) − q·dy² < 0` for every `dy`).
+    pub(crate) const NONE: Self = Self(Ellipse {
+        y0i: 0.0,
+        y0f: 0.0,
+        q: 1.0,
+        h0: -1.0,
+        xc0: 0.0,
+        kx: 0.0,
+    });
+
+    /// Whether any pixel centre of an image of `size` is in the silhouette: a row of
+    /// [`Self::rows`] whose [`Self::row_span`] is not empty. Once per frame, and only
+    /// for a frame that needs it (`O(height)`).
+    pub(crate) fn meets_image(&self, size: embedded_graphics::geometry::Size) -> bool {
+        let (j0, j1) = self.rows(size.height);
+        (j0..j1).any(|j| self.row_span(j, 0, size.width).is_some())
+    }
+
+    /// Whether no primary ray through a pixel centre of the image can meet the sphere
+    /// (`l = centre − eye`), its radius enlarged as [`Self::new`] enlarges it: the
+    /// angle between `l` and the image's centre ray exceeds the enlarged sphere's
+    /// angular radius plus the largest angle between the centre ray and a corner ray
+    /// (every ray of the image lies within that cone, and a ray meets the sphere only
+    /// within its angular radius of `l`). For a sphere whose silhouette is not a
+    /// bounded ellipse (one reaching the plane of the eye: beside or behind it). Once
+    /// per frame, in `f64`, with a slack of `10⁻⁶` radians over its rounding.
+    pub(crate) fn outside_view(l: Vec3, radius: f32, camera: &Camera, margin: Margin, step_err: f32) -> bool {
+        let v64 = |v: Vec3| [f64::from(v.x), f64::from(v.y), f64::from(v.z)];
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let angle = |a: [f64; 3], b: [f64; 3]| {
+            let c = dot(a, b) / libm::sqrt(dot(a, a) * dot(b, b));
+            libm::acos(c.clamp(-1.0, 1.0))
+        };
+        let (lv, f, du, dv) = (
+            v64(l),
+            v64(camera.first_direction()),
+            v64(camera.pixel_step()),
+            v64(camera.scanline_step()),
+        );
+        let size = camera.size();
+        let (x1, y1) = (
+            f64::from(size.width.max(1) - 1),
+            f64::from(size.height.max(1) - 1),
+        );
+        let at = |x: f64, y: f64| {
+            let [f0, f1, f2] = f;
+            let ([u0, u1, u2], [v0, v1, v2]) = (du, dv);
+            [f0 + x * u0 + y * v0, f1 + x * u1 + y * v1, f2 + x * u2 + y * v2]
+        };
+        let axis = at(x1 / 2.0, y1 / 2.0);
+        let beta = [at(0.0, 0.0), at(x1, 0.0), at(0.0, y1), at(x1, y1)]
+            .into_iter()
+            .map(|c| angle(axis, c))
+            .fold(0.0, f64::max);
+        let l2 = dot(lv, lv);
+        let l_len = libm::sqrt(l2);
+        let r_tot = enlarged(f64::from(radius), l2, l_len, margin, f64::from(step_err));
+        if !(l_len.is_finite() && r_tot < l_len && beta.is_finite()) {
+            return false;
+        }
+        let alpha = libm::asin(r_tot / l_len);
+        angle(axis, lv) > alpha + beta + 1e-6
+    }
+
     /// The ellipse; `None` for [`Self::ALL`] (and any `q` that is not positive).
     #[inline(always)]
     pub(crate) fn get(&self) -> Option<Ellipse> {
@@ -516,6 +581,16 @@ const TWO_M50: f64 = 1.0 / 1_125_899_906_842_624.0;
 /// The enlarged silhouette (`INNER`: shrunk) as an ellipse, or `None` when it is not a
 /// bounded ellipse. The side is a const: a firmware that only culls links only the
 /// enlarged one.
+/// The sphere's radius `r` (at distance `l_len`, `l2` its square, from the eye) enlarged for the test's
+/// rounding `margin`, then for the stepping's direction error `step_err`.
+fn enlarged(r: f64, l2: f64, l_len: f64, margin: Margin, step_err: f64) -> f64 {
+    let r_eff = match margin {
+        Margin::Linear => r * (1.0 + TWO_M16) + l_len * TWO_M18,
+        Margin::Quadratic => libm::sqrt(r * r * (1.0 + TWO_M10) + l2 * TWO_M17),
+    };
+    r_eff + 2.0 * step_err * (1.0 + 1e-3) * l_len
+}
+
 fn ellipse<const INNER: bool>(
     l: Vec3,
     radius: f32,
@@ -553,11 +628,7 @@ fn ellipse<const INNER: bool>(
         }
         r_tot
     } else {
-        let r_eff = match margin {
-            Margin::Linear => r * (1.0 + TWO_M16) + l_len * TWO_M18,
-            Margin::Quadratic => libm::sqrt(r * r * (1.0 + TWO_M10) + l2 * TWO_M17),
-        };
-        r_eff + 2.0 * step_err * (1.0 + 1e-3) * l_len
+        enlarged(r, l2, l_len, margin, step_err)
     };
     // A bounded ellipse needs the enlarged sphere strictly in front of the plane through
     // the eye parallel to the image (which also puts the eye outside it).

@@ -67,31 +67,61 @@ impl SphereGeom {
 
 /// The power of two a frame's (or a query's) eye-relative lengths are multiplied by
 /// before any product is formed, so that no square overflows or loses its precision to
-/// subnormals: `1` while the largest eye-relative coordinate or radius `m` is within
-/// `[2⁻⁴⁰, 2⁴⁰]` (every square and product of the tests then stays far inside the
-/// `f32` range), otherwise the power of two that brings `m` into `[1, 2)`.
+/// subnormals: the one nearest 1 that brings every size (largest eye-relative
+/// coordinate or radius) into `[2⁻⁴⁰, 2⁵⁰)`. There the tests' squares and products
+/// stay far inside `f32`'s normal range: a square at most `3·2¹⁰⁰`, times a ray
+/// direction's `|d|² < 2¹⁶`, below `2¹¹⁸`; at least `2⁻⁸⁰` times the stepping's
+/// smallest factors, above `2⁻¹²⁰`.
 ///
 /// Multiplying by a power of two is exact, and every test, the silhouettes and the
 /// shading are homogeneous in these lengths (a hit's `t` scales with them, `n·(−w)` not
 /// at all), so a scaled frame computes exactly the numbers an unscaled one would have,
-/// times powers of two: the same pixels, bit for bit, for any scene whose magnitudes
-/// `f32` can hold, and no cost per pixel.
+/// times powers of two: the same pixels, bit for bit, wherever the sizes fit — a
+/// frame's largest at most about 2⁹⁰ times its smallest — and no cost per pixel.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Scale(pub f32);
 
 impl Scale {
-    /// The scale for the largest eye-relative coordinate or radius `m`.
+    /// `e` with `2^e ≤ m < 2^(e+1)`, for a finite `m > 0` (subnormals included).
+    fn exponent(m: f32) -> i32 {
+        let bits = m.to_bits() & 0x7fff_ffff;
+        let biased = (bits >> 23) as i32;
+        if biased == 0 {
+            // Subnormal: m = bits · 2⁻¹⁴⁹.
+            (31 - bits.leading_zeros() as i32) - 149
+        } else {
+            biased - 127
+        }
+    }
+
+    /// The scale for a frame whose sizes run from `lo` to `hi` (finite, `0 < lo ≤ hi`):
+    /// `2^k` with `k` nearest 0 such that `lo·2^k ≥ 2⁻⁴⁰` and `hi·2^k < 2⁵⁰`, or `None`
+    /// where no normal `f32` power of two does (`hi/lo` beyond about 2⁹⁰).
+    pub(crate) fn for_range(lo: f32, hi: f32) -> Option<Self> {
+        const LO: i32 = -40;
+        const HI: i32 = 50;
+        let k_min = LO - Self::exponent(lo);
+        let k_max = HI - 1 - Self::exponent(hi);
+        let k = if k_min > 0 {
+            k_min
+        } else if k_max < 0 {
+            k_max
+        } else {
+            0
+        };
+        if k < k_min || k > k_max || !(-126..=127).contains(&k) {
+            return None;
+        }
+        Some(Scale(f32::from_bits(((127 + k) as u32) << 23)))
+    }
+
+    /// The scale for the largest eye-relative coordinate or radius `m` alone (a query):
+    /// [`Self::for_range`] of `m` to `m`; 1 for 0 or a non-finite `m`.
     pub(crate) fn for_magnitude(m: f32) -> Self {
-        const LO: f32 = 1.0 / 1_099_511_627_776.0; // 2⁻⁴⁰
-        const HI: f32 = 1_099_511_627_776.0; // 2⁴⁰
-                                             // Nothing to scale (no primitive, or all at the eye) keeps scale 1.
-        if (LO..=HI).contains(&m) || !m.is_finite() || m == 0.0 {
+        if !m.is_finite() || m <= 0.0 {
             return Scale(1.0);
         }
-        // m = 2^e · 1.f; the scale is 2^−e, with e kept where 2^−e is a normal f32.
-        let e = ((m.to_bits() >> 23) & 0xff) as i32 - 127;
-        let e = e.clamp(-126, 126);
-        Scale(f32::from_bits(((127 - e) as u32) << 23))
+        Self::for_range(m, m).unwrap_or(Scale(1.0))
     }
 
     /// The scale for spheres seen from `origin`. Once per frame: out of line and

@@ -8,6 +8,7 @@ use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
+use crate::error::FrameError;
 use crate::trace::options::Sample;
 use crate::trace::scanline::RowSink;
 use crate::trace::scanline::{ColorRuns, PixelRow};
@@ -47,6 +48,8 @@ pub(crate) struct BandSink<'b, C> {
     pub buf: &'b mut [C],
     pub width: u32,
     pub j0: u32,
+    /// Why the frame was not drawn, if it was not.
+    pub refused: Option<FrameError>,
 }
 
 impl<C: PixelColor + From<Rgb888>> RowSink for BandSink<'_, C> {
@@ -75,6 +78,11 @@ impl<C: PixelColor + From<Rgb888>> RowSink for BandSink<'_, C> {
             *px = C::from(c);
         }
         tail.fill(background);
+        Ok(())
+    }
+
+    fn refused(&mut self, why: FrameError) -> Result<(), Self::Error> {
+        self.refused = Some(why);
         Ok(())
     }
 }

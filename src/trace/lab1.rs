@@ -138,16 +138,18 @@ fn frame_of<
     // once, never moved (a by-value `Frame` holding the `Vec` would be copied on
     // return, doubling the render's stack).
     let mut spheres = Vec::new();
-    let Some(frame) = Frame::<T, Lab1>::new::<N, M, L, P, D, S>(
+    let frame = match Frame::<T, Lab1>::new::<N, M, L, P, D, S>(
         scene,
         camera,
         options,
         rows.clip(clip),
         offset,
         &mut spheres,
-        0.0,
-    ) else {
-        return Ok(()); // nothing visible
+        G::CENTER,
+    ) {
+        Ok(Some(frame)) => frame,
+        Ok(None) => return Ok(()), // nothing visible
+        Err(why) => return sink.refused(why),
     };
     let (w, background) = (camera.w(), frame.background);
     rows.draw_rows::<M, K, S, T, Q, Lab1, _>(&frame, sink, |_, _, _| Lab1Row { w, background })

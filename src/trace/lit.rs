@@ -454,30 +454,20 @@ fn render_with<
     sink: &mut K,
 ) -> Result<(), K::Error> {
     let eye = camera.eye();
-    // The frame's scale covers the planes' points and the point lights too.
-    let mut others = 0.0f32;
-    let planes_at = scene.planes().iter().map(|p| p.point);
-    let lights_at = scene.lights().iter().filter_map(|l| match *l {
-        Light::Point { position, .. } => Some(position),
-        Light::Directional { .. } => None,
-    });
-    for at in planes_at.chain(lights_at) {
-        let m = (at - eye).max_abs();
-        if m > others {
-            others = m;
-        }
-    }
     let mut spheres = Vec::new();
-    let Some(frame) = Frame::<T, LitSphere>::new::<N, N, L, P, D, S>(
+    // Secondary rays can meet any object: none is culled for the frame's scale.
+    let frame = match Frame::<T, LitSphere>::new::<N, N, L, P, D, S>(
         scene,
         camera,
         options,
         rows.clip(clip),
         offset,
         &mut spheres,
-        others,
-    ) else {
-        return Ok(()); // nothing visible
+        false,
+    ) {
+        Ok(Some(frame)) => frame,
+        Ok(None) => return Ok(()), // nothing visible
+        Err(why) => return sink.refused(why),
     };
     let mut planes: Vec<FramePlane, P> = Vec::new();
     for p in scene.planes() {
@@ -1187,12 +1177,14 @@ fn plane_span<T: TestStrategy, const N: usize, const L: usize>(
 /// - Point light at height `h_P` above the plane (the side it is on): the shadow lies
 ///   in the cut of the cone from the light that contains the sphere (half-angle
 ///   `α = asin(r/|C − P|)`, axis at angle `γ` from the plane's downward normal),
-///   bounded when `γ + α < 90°`. Centred where the axis meets the plane (`h_P·tan γ`
-///   from the light's foot along the tilt), the cut reaches along the tilt at most
-///   `h_P·max(tan(γ + α) − tan γ, tan γ − tan(γ − α))` (a direction within `α` of the
-///   axis projects, in the vertical plane of the axis, within `α` of it) and across it
-///   at most `|p − P|·sin α ≤ h_P·sin α / cos(γ + α)`: the root of the sum of their
-///   squares bounds its radius.
+///   bounded when `γ + α < 90°`. Centred where the axis meets the plane (`h_C/cos γ`
+///   beyond the centre along the axis), the cut reaches along the tilt at most
+///   `h_P·(tan(γ + α) − tan γ) = h_P·sin α/(cos(γ + α)·cos γ)` (a direction within `α`
+///   of the axis projects, in the vertical plane of the axis, within `α` of it; the
+///   side toward the horizon is the longer) and across it at most
+///   `|p − P|·sin α ≤ h_P·sin α / cos(γ + α)`: the root of the sum of their squares
+///   bounds its radius. Products, not differences, and no point computed from the
+///   light's position: nothing cancels for a light however far.
 ///
 /// The ball is enlarged by `2⁻⁸` of the lengths involved (far beyond the `f32`
 /// rounding of the hit point and of the shadow test, ≈ 2⁻²² of them), and the
@@ -1238,12 +1230,19 @@ fn shadow_silhouette(
                 return Silhouette::ALL;
             }
             // Along the tilt, a cut point lies h_P·tan θ from the light's foot with θ
-            // within α of γ; across it, at most |p − P|·sin α ≤ h_P·sin α/cos(γ + α).
-            let tan = libm::tan;
-            let tilt = (tan(gamma + alpha) - tan(gamma)).max(tan(gamma) - tan(gamma - alpha));
-            let across = libm::sin(alpha) / libm::cos(gamma + alpha);
+            // within α of γ: at most h_P·(tan(γ + α) − tan γ) = h_P·sin α/(cos(γ + α)·cos γ)
+            // from the axis' point (the larger side: cos(γ + α) < cos(γ − α)); across
+            // it, at most |p − P|·sin α ≤ h_P·sin α/cos(γ + α). Written as products,
+            // not differences of tangents, and the axis' point found from the sphere's
+            // centre, not from the light: nothing cancels, however far the light (a
+            // light 10¹⁷ away has α below f64's resolution of tan γ).
+            let (sin_a, cos_g, cos_ga) = (libm::sin(alpha), libm::cos(gamma), libm::cos(gamma + alpha));
+            let tilt = sin_a / (cos_ga * cos_g);
+            let across = sin_a / cos_ga;
             let reach = libm::sqrt(tilt * tilt + across * across);
-            (along(p, axis, h_p / libm::cos(gamma)), h_p * reach)
+            // C's height on the light's side: the axis meets the plane h_C/cos γ on.
+            let h_c = dot(along(c, q, -1.0), n);
+            (along(c, axis, h_c / cos_g), h_p * reach)
         }
     };
     let size = libm::sqrt(dot(centre, centre)) + libm::sqrt(dot(c, c)) + r;

@@ -17,6 +17,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
+use crate::error::FrameError;
 use crate::math::vec3::Vec3;
 use crate::math::SqrtFn;
 use crate::method::intersect::{Scale, TestStrategy};
@@ -204,6 +205,12 @@ pub(crate) fn activate<'s, const N: usize, S: Stepper, T: TestStrategy, Sh: Shad
 pub(crate) trait RowSink {
     type Error;
     fn row<R: PixelRow>(&mut self, area: Rectangle, row: R) -> Result<(), Self::Error>;
+    /// The frame cannot be drawn exactly: no row comes. A sink that can say so keeps
+    /// the reason; a `DrawTarget` keeps what it shows.
+    #[inline(always)]
+    fn refused(&mut self, _why: FrameError) -> Result<(), Self::Error> {
+        Ok(())
+    }
 }
 
 /// One row as a sink takes it: every pixel as a [`Sample`] (direction, hit, colour),

@@ -14,6 +14,7 @@ mod band_wire;
 mod board_scenes;
 mod common;
 mod cycle_model;
+mod far_objects;
 mod firmware_hashes;
 mod firmware_scenes;
 mod integer;

@@ -48,7 +48,7 @@ use std::time::Duration;
 
 use clap::Parser;
 use embedded_graphics::pixelcolor::Rgb888;
-use embedded_raytracer::{scene_file, Options, Render, Sampling, SecondaryOrigin};
+use embedded_raytracer::{scene_file, FrameError, ObjectRef, Options, Render, Sampling, SecondaryOrigin};
 
 mod args;
 mod cost;
@@ -129,7 +129,7 @@ fn run() -> Result<(), String> {
             let render = Render::new(&spheres.scene, &camera)
                 .with_method(method)
                 .with_sampling(sampling);
-            let (r, e) = write_output(&render, &job, destination, &output)?;
+            let (r, e) = write_output(&render, &job, destination, &output, &scene)?;
             (r, e, render.arithmetic())
         }
         None => {
@@ -137,7 +137,7 @@ fn run() -> Result<(), String> {
                 .with_method(method)
                 .with_options(Options::DEFAULT.with_secondary(secondary))
                 .with_sampling(sampling);
-            let (r, e) = write_output(&render, &job, destination, &output)?;
+            let (r, e) = write_output(&render, &job, destination, &output, &scene)?;
             (r, e, render.arithmetic())
         }
     };
@@ -178,7 +178,10 @@ fn write_output<const N: usize, const L: usize, const P: usize, const D: usize>(
     job: &png_out::Job,
     destination: Destination,
     name: &Path,
+    scene: &Path,
 ) -> Result<(Duration, Duration), String> {
+    // Before any file is made: a frame the kernel cannot draw exactly is refused whole.
+    render.check().map_err(|e| frame_message(scene, e))?;
     let fail = |e: io::Error| format!("{}: cannot write the PNG: {e}", name.display());
     match destination {
         Destination::File { path, existing } => {
@@ -240,6 +243,30 @@ enum Destination {
 }
 
 /// Applies the output rules (module docs) to `output`.
+/// Why the scene cannot be drawn, naming the objects as the file does (`sphere[3]`,
+/// the fourth `[[sphere]]` table).
+fn frame_message(scene: &Path, e: FrameError) -> String {
+    let field = |o: ObjectRef| match o {
+        ObjectRef::Sphere(i) => format!("sphere[{i}]"),
+        ObjectRef::Plane(i) => format!("plane[{i}]"),
+        ObjectRef::Light(i) => format!("light[{i}]"),
+        _ => format!("{o}"),
+    };
+    let scene = scene.display();
+    match e {
+        FrameError::NotFinite(o) => {
+            format!("{scene}: {}: its distance from the eye is beyond f32's range", field(o))
+        }
+        FrameError::Magnitudes { far, near } => format!(
+            "{scene}: {}: more than 2^90 times farther from the eye (or larger) than {}: \
+             f32 cannot draw both exactly in one frame; move it nearer or leave it out",
+            field(far),
+            field(near)
+        ),
+        _ => format!("{scene}: {e}"),
+    }
+}
+
 fn destination(output: &Path, scene: &Path, force: bool) -> Result<Destination, String> {
     let name = output.display();
     // `late.png/` names a directory that is not there: the rename at the end would fail

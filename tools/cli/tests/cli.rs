@@ -1551,3 +1551,33 @@ fn version_completions_and_listed_choices() {
         "--size: expected WxH, got `12`",
     );
 }
+
+/// A scene no `f32` frame can draw exactly — a lamp 10³⁰ away beside spheres a few units
+/// from the eye — exits 2 naming the file, both objects as the file names them and the
+/// reason, and leaves the output that was there; a sphere 10³⁰ away outside the view of
+/// a spheres-only scene is left out and the rest drawn.
+#[test]
+fn a_scene_no_frame_can_hold_exits_2_naming_the_object() {
+    let dir = scratch("far-objects");
+    let lab = std::fs::read_to_string(standard::path("lab")).unwrap();
+    let lamp = format!("{lab}\n[[light]]\ntype = \"point\"\nposition = [1e30, 1e30, 1e30]\n");
+    std::fs::write(dir.join("far.png"), b"keep me").unwrap();
+    let o = run_in(&dir, &[write(&dir, "far.toml", &lamp), "--force"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("far.toml: light[0]: more than 2^90 times farther") && e.contains("than sphere["),
+        "{e}"
+    );
+    assert_eq!(std::fs::read(dir.join("far.png")).unwrap(), b"keep me");
+
+    let sphere = format!("{lab}\n[[sphere]]\ncenter = [0.0, -1e30, 0.0]\nradius = 1.0\ncolor = [255, 255, 255]\n");
+    let o = run_in(&dir, &[write(&dir, "hidden.toml", &sphere)]);
+    assert_rendered(&o);
+    let o = run_in(&dir, &[write(&dir, "lab.toml", &lab)]);
+    assert_rendered(&o);
+    assert!(
+        std::fs::read(dir.join("hidden.png")).unwrap() == std::fs::read(dir.join("lab.png")).unwrap(),
+        "a sphere out of view changed the picture"
+    );
+}

@@ -1,0 +1,359 @@
+//! Far objects: one object — a sphere, a plane or a point light — far from a standard
+//! scene, at one magnitude per decade from 10³ to 3·10³⁸, is drawn exactly or the frame
+//! is refused, never drawn wrong. The frame's scale (`Scale`, `frame_scale`) brings every
+//! object's size into the range `f32` computes exactly in; where no power of two holds
+//! them all, `Render::check` and `draw_band` name the object, and `draw` leaves the
+//! target as it was.
+//!
+//! "Exactly": where the far object changes no pixel of the `f64` reference, it changes
+//! no pixel of the render either (the near picture is the picture without it, bit for
+//! bit); a far lamp, which lights the scene, leaves the render as close to the
+//! reference as the same lamp 10³ away does.
+
+use embedded_graphics::pixelcolor::Rgb888;
+use embedded_graphics::prelude::*;
+use embedded_raytracer::{
+    BandError, Camera, FrameError, IntegerError, Light, Method, ObjectRef, Plane, Render, Scene, Sphere, Vec3,
+};
+use embedded_raytracer_lab::reference::{self, compare, Metrics};
+
+use embedded_raytracer_lab::standard::{FullSceneFile, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
+
+use crate::common::{self, load, load_full, trace, FEATURE_SCENES, SCENES};
+
+/// A render of a scene of the standard files' full type.
+type Full<'a> = Render<'a, MAX_SPHERES, Rgb888, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>;
+
+/// `file`'s scene with its last light replaced by `light`.
+fn with_last_light(
+    file: &FullSceneFile,
+    light: Light,
+) -> Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH> {
+    let scene = &file.scene;
+    let mut out = Scene::new(scene.background());
+    out.set_settings(scene.settings()).unwrap();
+    for s in scene.spheres() {
+        out.push(*s).unwrap();
+    }
+    for p in scene.planes() {
+        out.push_plane(*p).unwrap();
+    }
+    let n = scene.lights().len();
+    for l in &scene.lights()[..n - 1] {
+        out.push_light(*l).unwrap();
+    }
+    out.push_light(light).unwrap();
+    out
+}
+
+/// What is put far from the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Kind {
+    /// A sphere of radius 1 behind the eye.
+    Sphere,
+    /// A plane behind the eye, facing the scene.
+    Plane,
+    /// A point light behind the eye and above it.
+    Light,
+}
+
+/// One magnitude per decade, 10³ … 10³⁸, and 3·10³⁸.
+fn magnitudes() -> Vec<f32> {
+    let mut out: Vec<f32> = (3..=38).map(|k| format!("1e{k}").parse().unwrap()).collect();
+    out.push(3e38);
+    out
+}
+
+/// The unit vector from the look-at point to the eye (behind the eye, where no primary
+/// ray goes), and the camera's up.
+fn behind_and_up(camera: &Camera) -> (Vec3, Vec3) {
+    let p = camera.params();
+    let back = p.eye - p.look_at;
+    let back = back * (1.0 / back.dot(back).sqrt());
+    (back, camera.v())
+}
+
+/// `scene` with the far object `kind` at distance `m` from the eye, and its name.
+fn with_far<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    kind: Kind,
+    m: f32,
+) -> (Scene<N, L, P, D>, ObjectRef) {
+    let mut out = scene.clone();
+    let (back, up) = behind_and_up(camera);
+    let eye = camera.eye();
+    let at = eye + back * m;
+    let object = match kind {
+        Kind::Sphere => {
+            out.push(Sphere::new(at, 1.0, Rgb888::new(200, 200, 0))).unwrap();
+            ObjectRef::Sphere(out.spheres().len() - 1)
+        }
+        Kind::Plane => {
+            out.push_plane(Plane::new(at, back, Rgb888::new(0, 200, 200)))
+                .unwrap();
+            ObjectRef::Plane(out.planes().len() - 1)
+        }
+        Kind::Light => {
+            let at = eye + (back + up) * (m * 0.5);
+            out.push_light(Light::point(at, 0.4)).unwrap();
+            ObjectRef::Light(out.lights().len() - 1)
+        }
+    };
+    (out, object)
+}
+
+/// How one far object at one magnitude came out.
+#[derive(Debug)]
+enum Outcome {
+    /// Refused, naming the far object.
+    Refused(FrameError),
+    /// Drawn: pixels the far object changed in the render though not in the reference
+    /// (must be 0), and for a lamp the comparison with the reference and the colours.
+    Drawn {
+        changed: usize,
+        metrics: Option<(Metrics, Vec<Rgb888>)>,
+    },
+}
+
+/// `scene` with the far object, drawn with `method`, against `base` (the scene without
+/// it): a refusal must name the object and leave a band untouched; a drawn frame must
+/// change only pixels the reference changes.
+fn outcome<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    kind: Kind,
+    m: f32,
+    method: Method,
+) -> Outcome {
+    let (far, object) = with_far(scene, camera, kind, m);
+    let render = Render::<N, Rgb888, L, P, D>::new(&far, camera).with_method(method);
+    let size = camera.size();
+    if let Err(e) = render.check() {
+        match e {
+            FrameError::Magnitudes { far, .. } => assert_eq!(far, object, "{e}"),
+            FrameError::NotFinite(o) => assert_eq!(o, object, "{e}"),
+            other => panic!("{other:?}"),
+        }
+        let mut band = vec![Rgb888::new(1, 2, 3); size.width as usize * size.height as usize];
+        assert_eq!(
+            render.draw_band(0..size.height, &mut band),
+            Err(BandError::Frame(e))
+        );
+        assert!(
+            band.iter().all(|&p| p == Rgb888::new(1, 2, 3)),
+            "a refused band was written"
+        );
+        // `draw` leaves the target as it was.
+        let mut frame = common::Frame::new(size);
+        render.draw(&mut frame).unwrap();
+        assert!(frame.buf.iter().all(Option::is_none), "a refused frame was drawn");
+        return Outcome::Refused(e);
+    }
+    let got = trace(Render::<N, Rgb888, L, P, D>::new(&far, camera).with_method(method));
+    if kind == Kind::Light {
+        let truth = reference::render(&far, camera);
+        return Outcome::Drawn {
+            changed: 0,
+            metrics: Some((compare(&render, &truth), got.iter().map(|p| p.1).collect())),
+        };
+    }
+    let want = trace(Render::<N, Rgb888, L, P, D>::new(scene, camera).with_method(method));
+    let (truth, truth_base) = (reference::render(&far, camera), reference::render(scene, camera));
+    let mut changed = 0;
+    for (k, (a, b)) in got.iter().zip(&want).enumerate() {
+        let (i, j) = (k as u32 % size.width, k as u32 / size.width);
+        let same_truth = truth.get(i, j).map(|p| p.color) == truth_base.get(i, j).map(|p| p.color);
+        if same_truth && a.1 != b.1 {
+            changed += 1;
+        }
+    }
+    Outcome::Drawn {
+        changed,
+        metrics: None,
+    }
+}
+
+/// The far lamp's comparison with the reference must be as good as the same lamp's at
+/// 10³ (the sweep's first magnitude, where nothing is near a limit): no more coverage
+/// errors or pixels more than 2 levels off. The reference's shadow band grows with the
+/// lamp's distance (it takes the lamp's position as known to the `f32` rounding of its
+/// coordinates), so from about 10⁶ it calls most lit pixels undecidable; beyond 10⁷ the
+/// picture must also stay the picture of the lamp at 10⁷ (`settled`), which it
+/// converges to (every standard scene lies within 10⁴ of the eye, so the lamp's
+/// direction from any near point turns by at most 10⁻³): at most 1 % of the pixels more
+/// than 2 levels apart. A far lamp that lit nothing would darken every pixel it lights.
+fn no_worse(
+    name: &str,
+    m: f32,
+    method: Method,
+    got: &(Metrics, Vec<Rgb888>),
+    near: &Metrics,
+    settled: Option<&Vec<Rgb888>>,
+) {
+    let (got, colours) = got;
+    let apart = settled.map_or(0, |settled| {
+        colours
+            .iter()
+            .zip(settled)
+            .filter(|(a, b)| {
+                let d = |x: u8, y: u8| x.abs_diff(y);
+                d(a.r(), b.r()).max(d(a.g(), b.g())).max(d(a.b(), b.b())) > 2
+            })
+            .count()
+    });
+    println!("{name} lamp at {m:e} {method}: {apart} pixels apart from the lamp at 1e7");
+    assert!(
+        got.coverage_errors <= near.coverage_errors
+            && got.over_2 <= near.over_2
+            && apart * 100 <= colours.len(),
+        "{name} lamp at {m:e} {method}: {got:?}, {apart} pixels apart from the lamp at 1e7\n\
+         against the lamp at 1e3: {near:?}"
+    );
+}
+
+/// Every magnitude for one scene, kind and method; prints and checks each outcome,
+/// returns (drawn, refused).
+fn sweep<const N: usize, const L: usize, const P: usize, const D: usize>(
+    name: &str,
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+    kind: Kind,
+    method: Method,
+) -> (usize, usize) {
+    let (mut drawn, mut refused) = (0, 0);
+    let (mut near, mut settled) = (None, None);
+    for m in magnitudes() {
+        match outcome(scene, camera, kind, m, method) {
+            Outcome::Refused(e) => {
+                println!("{name} {kind:?} {m:e} {method}: refused: {e}");
+                refused += 1;
+            }
+            Outcome::Drawn { changed, metrics } => {
+                println!("{name} {kind:?} {m:e} {method}: drawn, {changed} changed, {metrics:?}");
+                assert_eq!(
+                    changed, 0,
+                    "{name}: a {kind:?} at {m:e} changed {changed} pixels ({method})"
+                );
+                if let Some(got) = metrics {
+                    match &near {
+                        None => near = Some(got.0),
+                        Some(n) => no_worse(name, m, method, &got, n, settled.as_ref()),
+                    }
+                    if m == 1e7 {
+                        settled = Some(got.1);
+                    }
+                }
+                drawn += 1;
+            }
+        }
+    }
+    (drawn, refused)
+}
+
+const METHODS: [Method; 2] = [Method::TARGET_DEFAULT, Method::LITERAL];
+
+/// The sweep of the issue: each standard scene (shrunk to 64×48) with a far sphere, a
+/// far plane and a far lamp at every magnitude, for the default and the literal method.
+#[test]
+#[ignore = "about a minute in release; run by .ci/run"]
+fn far_objects_are_drawn_exactly_or_refused() {
+    for name in SCENES.iter().chain(&FEATURE_SCENES) {
+        let full = load_full(name);
+        let camera = common::shrink(&full.camera, 64, 48);
+        for method in METHODS {
+            // The spheres-only frame (Lab #1 scenes in their own type) culls a sphere
+            // outside the view for its scale: every magnitude is drawn.
+            if SCENES.contains(name) {
+                let lab = load(name);
+                let (drawn, refused) = sweep(name, &lab.scene, &camera, Kind::Sphere, method);
+                assert_eq!((drawn, refused), (magnitudes().len(), 0), "{name} {method}");
+            }
+            for kind in [Kind::Sphere, Kind::Plane, Kind::Light] {
+                let (drawn, refused) = sweep(name, &full.scene, &camera, kind, method);
+                // Every magnitude up to 10²⁴ is drawn: the frame holds about 2⁹⁰.
+                assert!(
+                    drawn >= 22,
+                    "{name} {kind:?} {method}: only {drawn} drawn, {refused} refused"
+                );
+            }
+        }
+    }
+}
+
+/// The cases a hostile user found, at 80×60: `lab` with a sphere 10²² below it (every
+/// visible sphere was doubled and streaked) or 10³⁰ (flat and dark) is the picture
+/// without it, bit for bit; `shadows` with its lamp 10²² away lights the floor as the
+/// reference does (it went unlit); a plane 10²² below the floor changes nothing; an eye
+/// inside a sphere of radius 3.4·10³⁸ is refused, naming the sphere.
+#[test]
+fn a_far_object_leaves_the_near_picture_exact_or_is_refused() {
+    let lab = load("lab");
+    let camera = common::shrink(&lab.camera, 80, 60);
+    let plain = trace(Render::<_, Rgb888>::new(&lab.scene, &camera));
+    for y in [-1e22f32, -1e30] {
+        let mut far = lab.scene.clone();
+        far.push(Sphere::new(Vec3::new(0.0, y, 0.0), 1.0, Rgb888::WHITE))
+            .unwrap();
+        for method in METHODS {
+            let got = trace(Render::<_, Rgb888>::new(&far, &camera).with_method(method));
+            let want = trace(Render::<_, Rgb888>::new(&lab.scene, &camera).with_method(method));
+            assert!(got == want, "lab + sphere at y = {y:e} ({method}) differs");
+        }
+        assert!(trace(Render::<_, Rgb888>::new(&far, &camera)) == plain);
+        // The integer kernel refuses the frame or draws it as without the sphere.
+        let mut a = common::Frame::new(camera.size());
+        let mut b = common::Frame::new(camera.size());
+        match Render::<_, Rgb888>::new(&far, &camera).draw_integer(&mut a) {
+            Err(IntegerError::Refused) => {}
+            Ok(()) => {
+                Render::<_, Rgb888>::new(&lab.scene, &camera)
+                    .draw_integer(&mut b)
+                    .unwrap();
+                assert!(a.buf == b.buf, "the integer kernel drew y = {y:e} differently");
+            }
+            Err(e) => panic!("{e:?}"),
+        }
+    }
+
+    let shadows = load_full("shadows");
+    let camera = common::shrink(&shadows.camera, 80, 60);
+    let base = Full::new(&shadows.scene, &camera);
+    let base_metrics = compare(&base, &reference::render(&shadows.scene, &camera));
+    // The lamp far away: as close to the reference as the scene's own.
+    let Some(&Light::Point { position, .. }) = shadows.scene.lights().last() else {
+        panic!("shadows' last light is a point light");
+    };
+    let at = position * (1e22 / position.dot(position).sqrt());
+    let far_lamp = with_last_light(&shadows, Light::point(at, 0.8));
+    let render = Full::new(&far_lamp, &camera);
+    assert_eq!(render.check(), Ok(()));
+    let m = compare(&render, &reference::render(&far_lamp, &camera));
+    assert!(
+        m.coverage_errors <= base_metrics.coverage_errors && m.over_2 == 0,
+        "lamp at 1e22: {m:?} (the scene's own: {base_metrics:?})"
+    );
+    // A plane hidden below the floor.
+    let mut below = shadows.scene.clone();
+    below
+        .push_plane(Plane::new(
+            Vec3::new(0.0, -1e22, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Rgb888::WHITE,
+        ))
+        .unwrap();
+    assert!(
+        trace(Full::new(&below, &camera)) == trace(base),
+        "a plane 1e22 below the floor changed the picture"
+    );
+    // The eye inside a sphere of radius 3.4e38: refused, naming it.
+    let mut inside = shadows.scene.clone();
+    inside
+        .push(Sphere::new(camera.eye(), 3.4e38, Rgb888::WHITE))
+        .unwrap();
+    let e = Full::new(&inside, &camera).check().unwrap_err();
+    assert!(
+        matches!(e, FrameError::Magnitudes { far: ObjectRef::Sphere(k), .. } if k == inside.spheres().len() - 1),
+        "{e:?}"
+    );
+}

@@ -22,6 +22,9 @@
 //! `s = 2·(C − p)·r/(r·r)`, computed directly (no root near 0 to misjudge). The
 //! textbook [`SecondaryOrigin::Epsilon`] starts the ray at `s = ε` and tests every
 //! object: it is kept to show where it fails (`lab/tests/lab/lit_stability.rs`).
+//! A shadow ray's other end, a point light, may lie on a surface too: the segment is
+//! open there, and such a (light, object) pair is decided per frame without a root at
+//! the lamp ([`Ties`]), as are coincident objects, which are one surface.
 
 use core::cell::Cell;
 
@@ -256,10 +259,13 @@ const ON_SURFACE: f64 = 1.0 / 65_536.0;
 ///   shadow segment toward such a lamp ends on that surface, where the test's root at
 ///   `t ≈ dist` is compared with `dist`: both carry the rounding of the test, about
 ///   `8u·(|C − o| + r + |P − o|)` (`u = 2⁻²⁴`) across the surface, so the comparison is
-///   a coin toss (speckles). The bound is 32 times that rounding for shadow origins
-///   within the frame's size of the eye: beyond it a lamp is decided by the root
-///   comparison and is far from the coin toss; within it, the segment is decided by
-///   the side it reaches the lamp from, which needs no root near `dist`:
+///   a coin toss (speckles). For origins `o` within `S = |P − E| + |C − E| + r` of the
+///   eye that rounding is at most `24u·S`, under a tenth of the bound `2⁻¹⁶·S =
+///   256u·S`: a lamp farther from the surface than the bound is decided by the roots,
+///   clear of the coin toss (origins farther out carry a rounding that grows with
+///   their distance, as the reference's shadow band does). Within the bound the
+///   segment is decided by the side it reaches the lamp from, with no root near
+///   `dist`:
 ///   - a plane through the lamp never blocks (the segment meets it only at its open
 ///     end);
 ///   - the line through the lamp meets the sphere at the lamp and at `2σ` before it,

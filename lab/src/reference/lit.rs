@@ -42,7 +42,13 @@
 //!   `l·n` within `e_l + POINT_ULPS·u` of 0. The surface `p` lies on is treated exactly:
 //!   a plane cannot block a ray leaving it; a sphere blocks it only if the ray goes into
 //!   it, at the chord `s = 2·(c − p)·l̂`, known to `2·(e_p + POINT_ULPS·u·(|c| + |p|) +
-//!   r·e_l)`.
+//!   r·e_l)`. A point light on a surface ([`ON_SURFACE`]) ends the segment on that
+//!   surface, open there: a plane through it never blocks; a sphere through it blocks
+//!   iff `0 < 2σ < dist` (`σ = (light − c)·l`, the line's other root `2σ` before the
+//!   light), undecidable when `2σ` is within `2·(e_p + POINT_ULPS·u·(|c| + |p| + r +
+//!   |light|) + r·e_l)` of 0 or `dist`. An object with a lower-numbered twin (the
+//!   same centre and radius, or point and normal) is never met: coincident objects are
+//!   one surface, the lower index's.
 //! - **A reflected ray** starts at `p` (error `e_p`) with direction error
 //!   `e_dir + 2·e_n + POINT_ULPS·u`; its line passes `p` at the incoming line's offset
 //!   `e_line` (the slide along the surface lies in the plane of incidence at angle θ to

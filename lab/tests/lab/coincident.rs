@@ -77,7 +77,8 @@ fn differ(a: &[Rgb888], b: &[Rgb888]) -> usize {
 /// Every standard scene with lights, a floor and mirrors, and Lab #1's, each object
 /// doubled after and before the originals: the picture is, bit for bit, the one
 /// without the twins in the lower index's colours — for the default method and the
-/// robust and forward-differenced tests, the convex exit and the textbook ε, one ray
+/// robust and forward-differenced tests and the integer kernel (Lab #1's on an FPU-less
+/// target; a lit scene is the `f32` path's), the convex exit and the textbook ε, one ray
 /// per pixel and `Grid(4)` (adaptive sampling's rays are the grid's). Measured
 /// before the twins were one surface: `shadows` doubled after, 622 of the 96×96
 /// pixels apart with the convex exit (black acne where shadow rays leaving one twin
@@ -88,6 +89,7 @@ fn coincident_spheres_show_the_lower_index() {
         Method::TARGET_DEFAULT,
         Method::new(Stepping::Direct, SphereTest::Robust, Sqrt::Exact),
         Method::new(Stepping::Direct, SphereTest::ForwardDiff, Sqrt::Exact),
+        Method::INTEGER,
     ];
     for name in ["shadows", "mirrors", "lab"] {
         let f = standard::load_full(name);

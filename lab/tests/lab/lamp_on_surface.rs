@@ -191,7 +191,8 @@ fn lamps_on_and_near_every_surface_cast_no_speckle() {
     println!("{cases} renders, {undecidable} undecidable pixels");
 }
 
-/// [`sweep`] at 120×120 over every offset.
+/// [`sweep`] at 120×120 over every offset (330 renders). Measured: 0 off in every
+/// render; 9,841 undecidable pixels in all (0.2 % of 4,752,000).
 #[test]
 #[ignore = "long: cargo test --release -p embedded-raytracer-lab --test lab lamps_on_and_near_every_surface_native -- --ignored"]
 fn lamps_on_and_near_every_surface_native() {

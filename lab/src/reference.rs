@@ -285,6 +285,30 @@ pub fn intersect(eye: D3, dir: D3, center: D3, radius: f64) -> RayHit {
     }
 }
 
+/// What a sphere that another one hides completely is along every ray: a miss whose
+/// silhouette never counts.
+pub const HIDDEN: RayHit = RayHit {
+    t: None,
+    disc: f64::NEG_INFINITY,
+    undecidable: false,
+    t_err: 0.0,
+    clearance: f64::INFINITY,
+    t_closest: 0.0,
+    behind: true,
+};
+
+/// Whether sphere `k` of `spheres` (`(centre, radius)`) has a lower-numbered twin: the
+/// same centre and radius, bit for bit. Coincident spheres are one surface, shown in
+/// the lower index's colour: the twin is never seen.
+#[must_use]
+pub fn has_twin(spheres: &[(D3, f64)], k: usize) -> bool {
+    let key = |(c, r): (D3, f64)| (c.x.to_bits(), c.y.to_bits(), c.z.to_bits(), r.to_bits());
+    match spheres.get(k) {
+        Some(&s) => spheres.iter().take(k).any(|&t| key(t) == key(s)),
+        None => false,
+    }
+}
+
 /// Lab #1 in `f64`: `round(c × clamp(n_z, 0.3, 1.0))` per 8-bit channel, halves up.
 #[must_use]
 pub fn lab1(color: Rgb888, n_z: f64) -> Rgb888 {
@@ -443,10 +467,19 @@ pub fn sphere_doubt(hits: &[RayHit], front: Option<(usize, f64, f64)>) -> (bool,
 /// Traces one ray through `spheres` in `f64` under Lab #1: the reference pixel.
 #[must_use]
 pub fn trace_ray(camera: &RefCamera, spheres: &[RefSphere], background: Rgb888, dir: D3) -> RefPixel {
-    let hits: Vec<RayHit> = spheres
+    let mut hits: Vec<RayHit> = spheres
         .iter()
         .map(|s| intersect(camera.eye, dir, s.center, s.radius))
         .collect();
+    // A hit on a coincident sphere is its lower-numbered twin's (checked only for hits).
+    if hits.iter().filter(|h| h.t.is_some()).count() > 1 {
+        let geometry: Vec<(D3, f64)> = spheres.iter().map(|s| (s.center, s.radius)).collect();
+        for (k, h) in hits.iter_mut().enumerate() {
+            if h.t.is_some() && has_twin(&geometry, k) {
+                *h = HIDDEN;
+            }
+        }
+    }
     let best = closest_sphere(&hits);
     let (undecidable, margin) = sphere_doubt(&hits, best);
     let why = if undecidable { why::SILHOUETTE } else { 0 };

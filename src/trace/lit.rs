@@ -22,6 +22,9 @@
 //! `s = 2·(C − p)·r/(r·r)`, computed directly (no root near 0 to misjudge). The
 //! textbook [`SecondaryOrigin::Epsilon`] starts the ray at `s = ε` and tests every
 //! object: it is kept to show where it fails (`lab/tests/lab/lit_stability.rs`).
+//! A shadow ray's other end, a point light, may lie on a surface too: the segment is
+//! open there, and such a (light, object) pair is decided per frame without a root at
+//! the lamp ([`Ties`]), as are coincident objects, which are one surface.
 
 use core::cell::Cell;
 
@@ -218,23 +221,181 @@ fn floor(x: f32) -> i32 {
 #[derive(Clone, Copy, Debug)]
 enum FrameLight {
     /// Unit vector toward the light.
-    Directional { l: Vec3, intensity: f32 },
+    Directional { l: Vec3, intensity: f32, exact: bool },
     /// Eye-relative, scaled position.
-    Point { p: Vec3, intensity: f32 },
+    Point { p: Vec3, intensity: f32, exact: bool },
 }
 
 impl FrameLight {
+    /// `exact`: its shadow rays take [`LitRow::occluded_exact`] (see [`Ties`]); set
+    /// once the frame's ties are known.
     fn new(light: &Light, eye: Vec3, scale: Scale) -> Option<Self> {
         Some(match *light {
             Light::Directional { direction, intensity } => FrameLight::Directional {
                 l: -direction.try_normalize()?,
                 intensity,
+                exact: false,
             },
             Light::Point { position, intensity } => FrameLight::Point {
                 p: (position - eye) * scale.0,
                 intensity,
+                exact: false,
             },
         })
+    }
+}
+
+/// How close to a surface a lamp counts as lying on it, relative to the frame's
+/// lengths: `2⁻¹⁶` (see [`Ties`]).
+const ON_SURFACE: f64 = 1.0 / 65_536.0;
+
+/// The frame's exact ties between objects, decided once per frame in `f64` from the
+/// scene's own `f32` values (not from the rounded eye-relative ones), so that every
+/// target decides them alike:
+///
+/// - **A lamp on a surface.** A point light `P` lies on sphere `(C, r)` when
+///   `| |P − C| − r | ≤ 2⁻¹⁶·(|P − E| + |C − E| + r)`, on a plane through `Q` with
+///   unit normal `n` when `|(P − Q)·n| ≤ 2⁻¹⁶·(|P − E| + |Q − E|)` (`E` the eye). A
+///   shadow segment toward such a lamp ends on that surface, where the test's root at
+///   `t ≈ dist` is compared with `dist`: both carry the rounding of the test, about
+///   `8u·(|C − o| + r + |P − o|)` (`u = 2⁻²⁴`) across the surface, so the comparison is
+///   a coin toss (speckles). For origins `o` within `S = |P − E| + |C − E| + r` of the
+///   eye that rounding is at most `24u·S`, under a tenth of the bound `2⁻¹⁶·S =
+///   256u·S`: a lamp farther from the surface than the bound is decided by the roots,
+///   clear of the coin toss (origins farther out carry a rounding that grows with
+///   their distance, as the reference's shadow band does). Within the bound the
+///   segment is decided by the side it reaches the lamp from, with no root near
+///   `dist`:
+///   - a plane through the lamp never blocks (the segment meets it only at its open
+///     end);
+///   - the line through the lamp meets the sphere at the lamp and at `2σ` before it,
+///     `σ = (P − C)·l` (`l` the unit direction toward the lamp): the segment is inside
+///     the sphere just before the lamp iff `σ > 0`, and then blocked iff the other
+///     root lies on it, `0 < 2σ < dist`. From the outside side (`σ ≤ 0`) the sphere
+///     does not block; a segment from within the sphere (`2σ ≥ dist`, e.g. from its
+///     own inner surface) does not either. A lamp inside a sphere (farther than the
+///     bound from it) is decided by the roots, as any occluder.
+/// - **Coincident objects.** A sphere with the same centre and radius bits as a
+///   lower-numbered one (a plane with the same point and normal bits) is the same
+///   surface: every test computes the same bits for both, so a primary ray shows the
+///   lower number (the strict `t < t_max`), and a secondary ray leaving either treats
+///   the other as the surface it leaves (the convex exit): no ray sees one twin from
+///   the other at `t ≈ 0`.
+///
+/// Scenes without either tie pay one comparison per shadow ray (the light's `exact`
+/// flag) and one per reflected ray.
+struct Ties<const N: usize, const L: usize, const P: usize> {
+    /// Per light (the frame's numbering) and sphere: the lamp lies on it.
+    on_sphere: [[bool; N]; L],
+    /// Per light and plane: the lamp lies on it.
+    on_plane: [[bool; P]; L],
+    /// Per sphere: the lowest-numbered sphere identical to it (itself if none).
+    sphere_twin: [Object; N],
+    /// Per plane: the object number of the lowest-numbered identical plane.
+    plane_twin: [Object; P],
+    /// Some object has a lower-numbered twin.
+    twins: bool,
+    /// The scene's sphere count (the planes' object numbers follow).
+    n_spheres: usize,
+}
+
+impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
+    /// The ties of `scene` seen from `eye`, and each light's `exact` flag in `lights`
+    /// (the frame's lights, in the scene's order less the unusable ones). Once per
+    /// frame, out of line.
+    #[cold]
+    #[inline(never)]
+    fn new<const D: usize>(scene: &Scene<N, L, P, D>, eye: Vec3, lights: &mut [FrameLight]) -> Self {
+        let v = |a: Vec3| [f64::from(a.x), f64::from(a.y), f64::from(a.z)];
+        let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let len = |a: [f64; 3]| libm::sqrt(dot(a, a));
+        let e = v(eye);
+        let spheres = scene.spheres();
+        let planes = scene.planes();
+        let n_spheres = spheres.len();
+        let bits = |a: Vec3| (a.x.to_bits(), a.y.to_bits(), a.z.to_bits());
+        let mut sphere_twin: [Object; N] = core::array::from_fn(|k| k);
+        let mut plane_twin: [Object; P] = core::array::from_fn(|k| n_spheres + k);
+        let mut twins = false;
+        for (k, s) in spheres.iter().enumerate() {
+            let key = (bits(s.center), s.radius.to_bits());
+            if let (Some(j), Some(slot)) = (
+                spheres
+                    .iter()
+                    .position(|t| (bits(t.center), t.radius.to_bits()) == key),
+                sphere_twin.get_mut(k),
+            ) {
+                *slot = j;
+                twins |= j != k;
+            }
+        }
+        for (k, p) in planes.iter().enumerate() {
+            let key = (bits(p.point), bits(p.normal));
+            if let (Some(j), Some(slot)) = (
+                planes.iter().position(|q| (bits(q.point), bits(q.normal)) == key),
+                plane_twin.get_mut(k),
+            ) {
+                *slot = n_spheres + j;
+                twins |= j != k;
+            }
+        }
+        let mut on_sphere = [[false; N]; L];
+        let mut on_plane = [[false; P]; L];
+        let usable = scene.lights().iter().filter(|l| match **l {
+            Light::Directional { direction, .. } => direction.try_normalize().is_some(),
+            Light::Point { .. } => true,
+        });
+        for (((light, fl), row), prow) in usable
+            .zip(lights.iter_mut())
+            .zip(&mut on_sphere)
+            .zip(&mut on_plane)
+        {
+            let mut on = false;
+            if let Light::Point { position, .. } = *light {
+                let at = v(position);
+                let pe = len(sub(at, e));
+                for (flag, s) in row.iter_mut().zip(spheres) {
+                    let (c, r) = (v(s.center), f64::from(s.radius));
+                    let gap = len(sub(at, c)) - r;
+                    *flag = gap.abs() <= ON_SURFACE * (pe + len(sub(c, e)) + r);
+                    on |= *flag;
+                }
+                for (flag, p) in prow.iter_mut().zip(planes) {
+                    let Some(n) = p.normal.try_normalize() else {
+                        continue;
+                    };
+                    let q = v(p.point);
+                    let h = dot(sub(at, q), v(n));
+                    *flag = h.abs() <= ON_SURFACE * (pe + len(sub(q, e)));
+                    on |= *flag;
+                }
+            }
+            match fl {
+                FrameLight::Directional { exact, .. } | FrameLight::Point { exact, .. } => {
+                    *exact = on || twins
+                }
+            }
+        }
+        Self {
+            on_sphere,
+            on_plane,
+            sphere_twin,
+            plane_twin,
+            twins,
+            n_spheres,
+        }
+    }
+
+    /// The lowest-numbered object identical to `k` (`k` itself if none).
+    #[inline(always)]
+    fn twin(&self, k: Object) -> Object {
+        let twin = if k < self.n_spheres {
+            self.sphere_twin.get(k)
+        } else {
+            self.plane_twin.get(k - self.n_spheres)
+        };
+        twin.copied().unwrap_or(k)
     }
 }
 
@@ -242,8 +403,10 @@ impl FrameLight {
 type Object = usize;
 
 /// Per-frame state of the scene-features path.
-struct LitFrame<'a, T: TestStrategy, const N: usize, const L: usize> {
+struct LitFrame<'a, T: TestStrategy, const N: usize, const L: usize, const P: usize> {
     spheres: &'a [FrameSphere<T, LitSphere>],
+    /// Lamps on surfaces and coincident objects.
+    ties: &'a Ties<N, L, P>,
     /// Per light and sphere: where on the image the sphere's shadow on the first plane
     /// can be (see [`shadow_silhouette`]).
     shadow: &'a [[Silhouette; N]; L],
@@ -480,6 +643,7 @@ fn render_with<
             let _ = lights.push(fl);
         }
     }
+    let ties = Ties::new(scene, eye, &mut lights);
     let size = camera.size();
     let d_max = f64::from(camera.first_direction().length())
         + f64::from(size.width) * f64::from(camera.pixel_step().length())
@@ -499,6 +663,7 @@ fn render_with<
     let shadow_rows: [ShadowRow<N>; L] = core::array::from_fn(|_| ShadowRow::empty());
     let lit = LitFrame {
         spheres: frame.spheres,
+        ties: &ties,
         shadow: &shadow,
         shadow_rows: &shadow_rows,
         planes: &planes,
@@ -526,7 +691,7 @@ fn render_with<
 /// light, the object that last shadowed a pixel of the row (tested first: neighbouring
 /// pixels are usually shadowed by the same occluder).
 struct LitRow<'f, 's, T: TestStrategy, Q, O, const N: usize, const L: usize, const P: usize, const D: usize> {
-    f: &'f LitFrame<'s, T, N, L>,
+    f: &'f LitFrame<'s, T, N, L, P>,
     /// Per plane: columns `[lo, lo + len)` whose rays can hit it.
     spans: [(u32, u32); P],
     occluder: [Object; L],
@@ -554,7 +719,7 @@ impl<
     /// Row `j`: the planes' spans, widening the row's traced union `[lo_all, hi_all)`,
     /// and the shadow spans.
     #[inline(never)]
-    fn new(f: &'f LitFrame<'s, T, N, L>, j: u32, lo_all: &mut u32, hi_all: &mut u32) -> Self {
+    fn new(f: &'f LitFrame<'s, T, N, L, P>, j: u32, lo_all: &mut u32, hi_all: &mut u32) -> Self {
         let mut spans = [(0, 0); P];
         for (span, plane) in spans.iter_mut().zip(f.planes) {
             if let Some((lo, hi)) = plane_span(f, plane, j) {
@@ -590,6 +755,9 @@ impl<
     /// object `o` lies on (`inside`: on a sphere's inner surface).
     fn closest(&self, o: Vec3, dir: Vec3, from: Object, inside: bool) -> Option<(Object, f32)> {
         let f = self.f;
+        if f.ties.twins {
+            return self.closest_twins(o, dir, from, inside);
+        }
         let a = dir.dot(dir);
         let mut best = None;
         let mut t_max = f32::INFINITY;
@@ -619,6 +787,45 @@ impl<
             if t > 0.0 && t < t_max {
                 t_max = t;
                 best = Some((n + k, t));
+            }
+        }
+        best
+    }
+
+    /// [`Self::closest`] in a frame with coincident objects ([`Ties`]): an object with
+    /// a lower-numbered twin is left out (the twin computes the same bits and wins the
+    /// tie), and the twin of the surface the ray leaves is that surface.
+    #[inline(never)]
+    fn closest_twins(&self, o: Vec3, dir: Vec3, from: Object, inside: bool) -> Option<(Object, f32)> {
+        let f = self.f;
+        let ties = f.ties;
+        let from = ties.twin(from);
+        let a = dir.dot(dir);
+        let mut best = None;
+        let mut t_max = f32::INFINITY;
+        let n = f.spheres.len();
+        for k in 0..n + f.planes.len() {
+            if ties.twin(k) != k {
+                continue;
+            }
+            let t = match f.spheres.get(k) {
+                Some(s) if !O::TESTS_SELF && k == from => {
+                    if !inside {
+                        continue;
+                    }
+                    Some(far_root(&s.geom, o, dir, a)).filter(|&t| t > 0.0 && t < t_max)
+                }
+                Some(s) => T::ray::<Q>(&s.geom.seen_from(o), dir, a, t_max),
+                None if !O::TESTS_SELF && k == from => continue,
+                None => f
+                    .planes
+                    .get(k - n)
+                    .map(|plane| plane.t_from(o, dir))
+                    .filter(|&t| t > 0.0 && t < t_max),
+            };
+            if let Some(t) = t {
+                t_max = t;
+                best = Some((k, t));
             }
         }
         best
@@ -701,6 +908,59 @@ impl<
         false
     }
 
+    /// [`Self::occluded`] for a light whose shadow rays need the frame's ties
+    /// ([`Ties`]): its lamp lies on some object, or the frame has coincident objects.
+    /// Every object is tested (no shadow span, no cached occluder): an object with a
+    /// lower-numbered twin is left out, the twin of the surface `o` lies on is that
+    /// surface, and an object the lamp (at `at`) lies on is decided by the side the
+    /// segment reaches the lamp from.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn occluded_exact(
+        &self,
+        light: usize,
+        at: Vec3,
+        o: Vec3,
+        l: Vec3,
+        dist: f32,
+        from: Object,
+        inside: bool,
+    ) -> bool {
+        let f = self.f;
+        let ties = f.ties;
+        let from = ties.twin(from);
+        let n = f.spheres.len();
+        let (Some(on_sphere), Some(on_plane)) = (ties.on_sphere.get(light), ties.on_plane.get(light)) else {
+            return false;
+        };
+        for k in 0..n + f.planes.len() {
+            if ties.twin(k) != k {
+                continue;
+            }
+            let on = if k < n {
+                on_sphere.get(k)
+            } else {
+                on_plane.get(k - n)
+            };
+            let blocked = match (on.copied().unwrap_or(false), f.spheres.get(k)) {
+                // A plane through the lamp meets the segment only at its open end; the
+                // surface the ray leaves is never met again before the lamp on it.
+                (true, None) => false,
+                (true, Some(_)) if !O::TESTS_SELF && k == from => false,
+                // The lamp on the sphere: the line meets it at the lamp and 2σ before.
+                (true, Some(s)) => {
+                    let two_sigma = 2.0 * (at - s.geom.l).dot(l);
+                    two_sigma > 0.0 && two_sigma < dist
+                }
+                (false, _) => self.blocks(k, o, l, dist, from, inside),
+            };
+            if blocked {
+                return true;
+            }
+        }
+        false
+    }
+
     /// The surface at `p` of object `k`, met by a ray along `dir`.
     #[inline(always)]
     fn surface(&self, k: Object, p: Vec3, dir: Vec3) -> Surface {
@@ -753,12 +1013,18 @@ impl<
         };
         let (mut diffuse, mut spec) = (0.0f32, 0.0f32);
         for (index, light) in f.lights.iter().enumerate() {
-            let (l, dist, intensity) = match *light {
-                FrameLight::Directional { l, intensity } => (l, f32::INFINITY, intensity),
-                FrameLight::Point { p: at, intensity } => {
+            let (l, dist, intensity, at, exact) = match *light {
+                FrameLight::Directional { l, intensity, exact } => {
+                    (l, f32::INFINITY, intensity, Vec3::ZERO, exact)
+                }
+                FrameLight::Point {
+                    p: at,
+                    intensity,
+                    exact,
+                } => {
                     let to = at - p;
                     let dist = sqrt_exact(to.dot(to));
-                    (to * (1.0 / dist), dist, intensity)
+                    (to * (1.0 / dist), dist, intensity, at, exact)
                 }
             };
             let nl = s.n.dot(l);
@@ -769,7 +1035,12 @@ impl<
             if f.shadows {
                 let o = O::start(p, l, f.eps);
                 let dist = if O::TESTS_SELF { dist - f.eps } else { dist };
-                if self.occluded(index, o, l, dist, k, s.inside, column) {
+                let blocked = if exact {
+                    self.occluded_exact(index, at, o, l, dist, k, s.inside)
+                } else {
+                    self.occluded(index, o, l, dist, k, s.inside, column)
+                };
+                if blocked {
                     continue;
                 }
             }
@@ -881,12 +1152,18 @@ impl<
         };
         let (mut diffuse, mut spec) = (0.0f32, 0.0f32);
         for (index, light) in f.lights.iter().enumerate() {
-            let (l, dist, intensity) = match *light {
-                FrameLight::Directional { l, intensity } => (l, f32::INFINITY, intensity),
-                FrameLight::Point { p: at, intensity } => {
+            let (l, dist, intensity, at, exact) = match *light {
+                FrameLight::Directional { l, intensity, exact } => {
+                    (l, f32::INFINITY, intensity, Vec3::ZERO, exact)
+                }
+                FrameLight::Point {
+                    p: at,
+                    intensity,
+                    exact,
+                } => {
                     let to = at - p;
                     let dist = sqrt_exact(to.dot(to));
-                    (to * (1.0 / dist), dist, intensity)
+                    (to * (1.0 / dist), dist, intensity, at, exact)
                 }
             };
             let nl = s.n.dot(l);
@@ -897,7 +1174,11 @@ impl<
             if f.shadows {
                 let o = O::start(p, l, f.eps);
                 let dist = if O::TESTS_SELF { dist - f.eps } else { dist };
-                let blocked = self.occluded(index, o, l, dist, k, s.inside, column);
+                let blocked = if exact {
+                    self.occluded_exact(index, at, o, l, dist, k, s.inside)
+                } else {
+                    self.occluded(index, o, l, dist, k, s.inside, column)
+                };
                 // Which lights reach the surface: a shadow boundary is an edge.
                 id.mix(2 * index as u32 + 1 + u32::from(blocked));
                 if blocked {
@@ -1127,8 +1408,8 @@ impl<
 /// within `dn_margin` of the ideal one (the stepping's bound `E` on `|d − ideal|` with
 /// `|n| = 1`, plus the dot product's rounding), so columns with `σ(A + iB) > −margin`
 /// are kept; computed in `f64`, once per row and plane.
-fn plane_span<T: TestStrategy, const N: usize, const L: usize>(
-    f: &LitFrame<'_, T, N, L>,
+fn plane_span<T: TestStrategy, const N: usize, const L: usize, const P: usize>(
+    f: &LitFrame<'_, T, N, L, P>,
     plane: &FramePlane,
     j: u32,
 ) -> Option<(u32, u32)> {

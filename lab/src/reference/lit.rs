@@ -42,7 +42,13 @@
 //!   `l·n` within `e_l + POINT_ULPS·u` of 0. The surface `p` lies on is treated exactly:
 //!   a plane cannot block a ray leaving it; a sphere blocks it only if the ray goes into
 //!   it, at the chord `s = 2·(c − p)·l̂`, known to `2·(e_p + POINT_ULPS·u·(|c| + |p|) +
-//!   r·e_l)`.
+//!   r·e_l)`. A point light on a surface ([`ON_SURFACE`]) ends the segment on that
+//!   surface, open there: a plane through it never blocks; a sphere through it blocks
+//!   iff `0 < 2σ < dist` (`σ = (light − c)·l`, the line's other root `2σ` before the
+//!   light), undecidable when `2σ` is within `2·(e_p + POINT_ULPS·u·(|c| + |p| + r +
+//!   |light|) + r·e_l)` of 0 or `dist`. An object with a lower-numbered twin (the
+//!   same centre and radius, or point and normal) is never met: coincident objects are
+//!   one surface, the lower index's.
 //! - **A reflected ray** starts at `p` (error `e_p`) with direction error
 //!   `e_dir + 2·e_n + POINT_ULPS·u`; its line passes `p` at the incoming line's offset
 //!   `e_line` (the slide along the surface lies in the plane of incidence at angle θ to
@@ -73,7 +79,7 @@ use std::vec::Vec;
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
-use super::{intersect, sphere_doubt, why, RayHit, RefCamera, RefPixel, D3};
+use super::{has_twin, intersect, sphere_doubt, why, RayHit, RefCamera, RefPixel, D3, HIDDEN};
 use embedded_raytracer::Light;
 use embedded_raytracer::Scene;
 
@@ -201,6 +207,33 @@ pub struct RefScene {
     pub mirrors: bool,
     /// Background colour.
     pub background: Rgb888,
+    /// Per object (spheres, then planes): it has a lower-numbered twin — the same
+    /// centre and radius, or the same point and normal, bit for bit. Coincident objects
+    /// are one surface, shown in the lower index's colour: the twin is never met.
+    pub hidden: Vec<bool>,
+}
+
+/// A point light lies on a surface within `2⁻¹⁶` of the frame's lengths: on sphere
+/// `(C, r)` when `| |P − C| − r | ≤ 2⁻¹⁶·(|P − E| + |C − E| + r)`, on a plane through
+/// `Q` with unit normal `n` when `|(P − Q)·n| ≤ 2⁻¹⁶·(|P − E| + |Q − E|)` (`E` the
+/// eye). The shadow segment toward such a lamp ends on that surface and is open there:
+/// a plane through the lamp never blocks it; a sphere through it blocks it iff the
+/// segment reaches the lamp from the sphere's inside and enters it on the way, i.e.
+/// `0 < 2σ < dist` with `σ = (P − C)·l` (the line meets the sphere at the lamp and
+/// `2σ` before it). The kernel decides these pairs by the same rule.
+pub const ON_SURFACE: f64 = 1.0 / 65_536.0;
+
+/// Whether lamp `p` lies on sphere `(c, r)` seen from `eye` ([`ON_SURFACE`]).
+#[must_use]
+pub fn lamp_on_sphere(p: D3, eye: D3, c: D3, r: f64) -> bool {
+    ((p - c).length() - r).abs() <= ON_SURFACE * ((p - eye).length() + (c - eye).length() + r)
+}
+
+/// Whether lamp `p` lies on the plane through `q` with unit normal `n` seen from `eye`
+/// ([`ON_SURFACE`]).
+#[must_use]
+pub fn lamp_on_plane(p: D3, eye: D3, q: D3, n: D3) -> bool {
+    (p - q).dot(n).abs() <= ON_SURFACE * ((p - eye).length() + (q - eye).length())
 }
 
 /// The checker basis of a plane with unit normal `n`: `a` the world axis along which `n`
@@ -276,7 +309,25 @@ impl RefScene {
             })
             .collect();
         let settings = scene.settings();
+        let geometry: Vec<(D3, f64)> = scene
+            .spheres()
+            .iter()
+            .map(|s| (D3::of(s.center), f64::from(s.radius)))
+            .collect();
+        let bits = |v: embedded_raytracer::Vec3| (v.x.to_bits(), v.y.to_bits(), v.z.to_bits());
+        let plane_key = |p: &embedded_raytracer::Plane| (bits(p.point), bits(p.normal));
+        let hidden = (0..geometry.len())
+            .map(|k| has_twin(&geometry, k))
+            .chain(scene.planes().iter().enumerate().map(|(k, p)| {
+                scene
+                    .planes()
+                    .iter()
+                    .take(k)
+                    .any(|q| plane_key(q) == plane_key(p))
+            }))
+            .collect();
         Self {
+            hidden,
             spheres,
             planes,
             lights,
@@ -447,14 +498,31 @@ fn candidates(scene: &RefScene, ray: &Ray, sphere_hits: &[RayHit]) -> Vec<Cand> 
         .spheres
         .iter()
         .enumerate()
-        .map(|(k, s)| sphere_cand(ray, k, s, sphere_hits.get(k)));
+        .map(|(k, s)| sphere_cand(ray, k, s, sphere_hits.get(k)))
+        .map(|c| hide(scene, c));
     let n = scene.spheres.len();
     let planes = scene
         .planes
         .iter()
         .enumerate()
-        .map(|(k, p)| plane_cand(ray, n + k, p));
+        .map(|(k, p)| plane_cand(ray, n + k, p))
+        .map(|c| hide(scene, c));
     spheres.chain(planes).collect()
+}
+
+/// A coincident object's candidate is never met (its lower-numbered twin is).
+fn hide(scene: &RefScene, c: Cand) -> Cand {
+    if scene.hidden.get(c.index).copied().unwrap_or(false) {
+        Cand {
+            index: c.index,
+            t: None,
+            tmin: f64::INFINITY,
+            tmax: f64::INFINITY,
+            hit_hi: f64::INFINITY,
+        }
+    } else {
+        c
+    }
 }
 
 /// The closest hit, first index on exact ties (the kernel's strict `t < t_max`).
@@ -652,8 +720,10 @@ fn crosses(p: D3, l: D3, dist: f64, c: D3, r: f64) -> bool {
     inside(q) || inside(other)
 }
 
-/// The shadow ray from `p` (on object `from`) toward a light: `(blocked, doubt)`, any-hit
-/// (the first certain occluder ends the test).
+/// The shadow ray from `p` (on object `from`) toward a light (`lamp`: a point light's
+/// position, with the `eye` that decides whether it lies on a surface,
+/// [`ON_SURFACE`]): `(blocked, doubt)`, any-hit (the first certain occluder ends the
+/// test).
 #[allow(clippy::too_many_arguments)]
 fn shadow(
     scene: &RefScene,
@@ -664,11 +734,31 @@ fn shadow(
     light_size: f64,
     e_p: f64,
     e_l: f64,
+    lamp: Option<D3>,
+    eye: D3,
 ) -> (bool, bool) {
     let (mut blocked, mut doubt) = (false, false);
+    let hidden = |k: usize| scene.hidden.get(k).copied().unwrap_or(false);
     for (k, s) in scene.spheres.iter().enumerate() {
         let (c, r) = (s.center, s.radius);
-        let (b, d) = if k == from {
+        if hidden(k) {
+            continue;
+        }
+        let on = lamp.filter(|&at| lamp_on_sphere(at, eye, c, r));
+        let (b, d) = if let Some(at) = on {
+            if k == from {
+                // A chord of its own sphere ends at the lamp on it: open there.
+                (false, false)
+            } else {
+                // The line meets the sphere at the lamp and 2σ before it.
+                let two_sigma = 2.0 * (at - c).dot(l);
+                let err = 2.0 * (e_p + ROUND * (c.length() + p.length() + r + light_size) + r * e_l);
+                (
+                    two_sigma > 0.0 && two_sigma < dist,
+                    two_sigma.abs() <= err || (two_sigma - dist).abs() <= err,
+                )
+            }
+        } else if k == from {
             // Its own surface: only going into it, out at the chord.
             let chord = 2.0 * (c - p).dot(l);
             let err = 2.0 * (e_p + ROUND * (c.length() + p.length()) + r * e_l);
@@ -694,7 +784,11 @@ fn shadow(
         let Some((n, _, _)) = pl.frame else {
             continue;
         };
-        if n_spheres + k == from {
+        if n_spheres + k == from || hidden(n_spheres + k) {
+            continue;
+        }
+        if lamp.is_some_and(|at| lamp_on_plane(at, eye, pl.point, n)) {
+            // Through the lamp: met only at the segment's open end.
             continue;
         }
         let h = (p - pl.point).dot(n);
@@ -722,7 +816,7 @@ fn shadow(
 
 /// The local colour under the scene's lights (Phong with hard shadows), and the
 /// decisions in doubt that can move it by more than [`LEVEL`] at weight `weight`.
-fn phong(scene: &RefScene, ray: &Ray, from: usize, sf: &Surface, weight: f64, why: &mut u8) -> Rgb {
+fn phong(scene: &RefScene, ray: &Ray, from: usize, sf: &Surface, weight: f64, why: &mut u8, eye: D3) -> Rgb {
     let v = D3::default() - ray.d * (1.0 / ray.len);
     let m = sf.material;
     let (mut diffuse, mut spec, mut diffuse_bound) = (0.0, 0.0, 0.0);
@@ -749,7 +843,11 @@ fn phong(scene: &RefScene, ray: &Ray, from: usize, sf: &Surface, weight: f64, wh
         });
         let reach = ndl > -e_gate;
         let (blocked, doubt) = if scene.shadows && reach {
-            shadow(scene, from, sf.p, l, dist, size, sf.e_p, e_l)
+            let lamp = match *light {
+                RefLight::Point { position, .. } => Some(position),
+                RefLight::Directional { .. } => None,
+            };
+            shadow(scene, from, sf.p, l, dist, size, sf.e_p, e_l, lamp, eye)
         } else {
             (false, false)
         };
@@ -821,7 +919,14 @@ pub fn trace(camera: &RefCamera, scene: &RefScene, dir: D3) -> RefPixel {
             scene
                 .spheres
                 .iter()
-                .map(|s| intersect(ray.o, ray.d, s.center, s.radius))
+                .enumerate()
+                .map(|(k, s)| {
+                    if scene.hidden.get(k).copied().unwrap_or(false) {
+                        HIDDEN
+                    } else {
+                        intersect(ray.o, ray.d, s.center, s.radius)
+                    }
+                })
                 .collect()
         } else {
             Vec::new()
@@ -881,7 +986,7 @@ pub fn trace(camera: &RefCamera, scene: &RefScene, dir: D3) -> RefPixel {
         let local = if scene.lights.is_empty() {
             lab1_local(&sf, w_local, &mut why)
         } else {
-            phong(scene, &ray, from, &sf, w_local, &mut why)
+            phong(scene, &ray, from, &sf, w_local, &mut why, camera.eye)
         };
         for (a, c) in acc.iter_mut().zip(local) {
             *a += w_local * c;

@@ -373,13 +373,10 @@ impl fmt::Display for ObjectRef {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum FrameError {
-    /// The object's distance from the eye (a sphere's centre, a plane's point, a point
-    /// light) or its radius is beyond `f32` (the difference of two finite coordinates
-    /// overflowed).
-    NotFinite(ObjectRef),
     /// No one power of two brings both objects' sizes — each its largest coordinate
     /// relative to the eye or its radius — into the range a frame computes exactly in,
-    /// `[2⁻⁴⁰, 2⁵⁰)`: `far` is more than about 2⁹⁰ (10²⁷) times `near`. An object the
+    /// `[2⁻⁴⁰, 2⁵⁰)`: `far` is more than about 2⁹⁰ (10²⁷) times `near`, or beyond `f32`
+    /// (its coordinates ±10³⁸ from the eye's). An object the
     /// frame can prove no ray meets does not count (a sphere outside the view of a
     /// scene without lights, planes or mirrors, with one ray a pixel).
     Magnitudes {
@@ -393,9 +390,6 @@ pub enum FrameError {
 impl fmt::Display for FrameError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            FrameError::NotFinite(o) => {
-                write!(f, "{o}: its distance from the eye is beyond f32's range")
-            }
             FrameError::Magnitudes { far, near } => write!(
                 f,
                 "{far} is more than 2^90 times farther from the eye (or larger) than {near}: \

@@ -514,7 +514,7 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Visit
         let r = self.0;
         // Only a Lab #1 frame of one ray a pixel culls for its scale (as `lab1.rs` does).
         let cull = !Scene::<N, L, P, D>::FEATURES && r.sampling == Sampling::Center;
-        crate::trace::frame::frame_scale::<N, L, P, D, S, T>(r.scene, r.camera, r.options, cull).map(|_| ())
+        crate::trace::frame::frame_scale::<N, L, P, D, S>(r.scene, r.camera, cull).map(|_| ())
     }
 }
 

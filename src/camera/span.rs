@@ -101,60 +101,6 @@ impl Silhouette {
         kx: 0.0,
     });
 
-    /// Whether any pixel centre of an image of `size` is in the silhouette: a row of
-    /// [`Self::rows`] whose [`Self::row_span`] is not empty. Once per frame, and only
-    /// for a frame that needs it (`O(height)`).
-    pub(crate) fn meets_image(&self, size: embedded_graphics::geometry::Size) -> bool {
-        let (j0, j1) = self.rows(size.height);
-        (j0..j1).any(|j| self.row_span(j, 0, size.width).is_some())
-    }
-
-    /// Whether no primary ray through a pixel centre of the image can meet the sphere
-    /// (`l = centre − eye`), its radius enlarged as [`Self::new`] enlarges it: the
-    /// angle between `l` and the image's centre ray exceeds the enlarged sphere's
-    /// angular radius plus the largest angle between the centre ray and a corner ray
-    /// (every ray of the image lies within that cone, and a ray meets the sphere only
-    /// within its angular radius of `l`). For a sphere whose silhouette is not a
-    /// bounded ellipse (one reaching the plane of the eye: beside or behind it). Once
-    /// per frame, in `f64`, with a slack of `10⁻⁶` radians over its rounding.
-    pub(crate) fn outside_view(l: Vec3, radius: f32, camera: &Camera, margin: Margin, step_err: f32) -> bool {
-        let v64 = |v: Vec3| [f64::from(v.x), f64::from(v.y), f64::from(v.z)];
-        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-        let angle = |a: [f64; 3], b: [f64; 3]| {
-            let c = dot(a, b) / libm::sqrt(dot(a, a) * dot(b, b));
-            libm::acos(c.clamp(-1.0, 1.0))
-        };
-        let (lv, f, du, dv) = (
-            v64(l),
-            v64(camera.first_direction()),
-            v64(camera.pixel_step()),
-            v64(camera.scanline_step()),
-        );
-        let size = camera.size();
-        let (x1, y1) = (
-            f64::from(size.width.max(1) - 1),
-            f64::from(size.height.max(1) - 1),
-        );
-        let at = |x: f64, y: f64| {
-            let [f0, f1, f2] = f;
-            let ([u0, u1, u2], [v0, v1, v2]) = (du, dv);
-            [f0 + x * u0 + y * v0, f1 + x * u1 + y * v1, f2 + x * u2 + y * v2]
-        };
-        let axis = at(x1 / 2.0, y1 / 2.0);
-        let beta = [at(0.0, 0.0), at(x1, 0.0), at(0.0, y1), at(x1, y1)]
-            .into_iter()
-            .map(|c| angle(axis, c))
-            .fold(0.0, f64::max);
-        let l2 = dot(lv, lv);
-        let l_len = libm::sqrt(l2);
-        let r_tot = enlarged(f64::from(radius), l2, l_len, margin, f64::from(step_err));
-        if !(l_len.is_finite() && r_tot < l_len && beta.is_finite()) {
-            return false;
-        }
-        let alpha = libm::asin(r_tot / l_len);
-        angle(axis, lv) > alpha + beta + 1e-6
-    }
-
     /// The ellipse; `None` for [`Self::ALL`] (and any `q` that is not positive).
     #[inline(always)]
     pub(crate) fn get(&self) -> Option<Ellipse> {
@@ -1033,5 +979,68 @@ mod tests {
         // Quadratic margin 2⁻¹⁷·|L|² ≈ 7.6e-4 against r² = 1e-4: nothing is proven.
         assert!(Silhouette::inner(l, 0.01, &camera, Margin::Quadratic, 0.0).is_none());
         assert!(Silhouette::inner(l, 0.01, &camera, Margin::Linear, 0.0).is_some());
+    }
+}
+
+/// The cone around the camera's axis `w` that holds every primary ray through a pixel
+/// centre (its half-angle `β` the angle to the farthest pixel centre): a sphere whose
+/// enlarged angular radius `α` plus `β` is less than the angle `θ` between its centre
+/// and the centre ray is met by no primary ray. Once per frame, and only for a frame
+/// that leaves spheres out for its scale (`trace/frame.rs`); in `f32`, with every
+/// bound loose enough for its rounding: `sin α` is taken as
+/// `(r/|l|)·(1 + 2⁻¹⁰) + 2⁻⁸ + 2.002·step_err` (above either test margin's enlargement
+/// and the stepping's, see [`Silhouette::new`]), and the cosines compared with a slack
+/// of `10⁻⁵` (`α + β < π`, where the cosine decreases:
+/// `θ > α + β ⇔ cos θ < cos α·cos β − sin α·sin β`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ViewCone {
+    /// The camera's unit axis `w`.
+    axis: Vec3,
+    cos_b: f32,
+    sin_b: f32,
+    /// The angular enlargement `2⁻⁸ + 2.002·step_err`.
+    widen: f32,
+}
+
+impl ViewCone {
+    /// The camera's cone: around `w`, through the pixel centre farthest from it, at
+    /// `((W − 1)/2, (H − 1)/2)` pixels on the image plane at distance `F·w` (`F` the
+    /// first pixel's direction). `None` where that is not a positive distance.
+    pub(crate) fn new(camera: &Camera, step_err: f32) -> Option<Self> {
+        let size = camera.size();
+        let axis = camera.w();
+        let d = camera.first_direction().dot(axis);
+        let x = (size.width.max(1) - 1) as f32 * 0.5 * camera.pixel_width();
+        let y = (size.height.max(1) - 1) as f32 * 0.5 * camera.pixel_height();
+        let tan_b = crate::math::sqrt_exact(x * x + y * y) / d;
+        if !(d > 0.0 && tan_b.is_finite()) {
+            return None;
+        }
+        let cos_b = 1.0 / crate::math::sqrt_exact(1.0 + tan_b * tan_b);
+        Some(Self {
+            axis,
+            cos_b,
+            sin_b: tan_b * cos_b,
+            widen: 1.0 / 256.0 + 2.002 * step_err,
+        })
+    }
+
+    /// Whether no primary ray meets the sphere `l = centre − eye`, radius `radius`.
+    pub(crate) fn misses(&self, l: Vec3, radius: f32) -> bool {
+        // Scaled to its largest coordinate first: no square overflows at 10³⁸.
+        let m = l.max_abs();
+        if !(m > 0.0 && m.is_finite()) {
+            return false;
+        }
+        let Some(dir) = (l * (1.0 / m)).try_normalize() else {
+            return false;
+        };
+        let len = (l * (1.0 / m)).dot(l * (1.0 / m));
+        let sin_a = radius / m / crate::math::sqrt_exact(len) * (1.0 + 1.0 / 1024.0) + self.widen;
+        if !(sin_a < 1.0) {
+            return false;
+        }
+        let cos_a = crate::math::sqrt_exact(1.0 - sin_a * sin_a);
+        self.axis.dot(dir) < cos_a * self.cos_b - sin_a * self.sin_b - 1e-5
     }
 }

@@ -11,7 +11,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
-use crate::camera::span::Silhouette;
+use crate::camera::span::{Silhouette, ViewCone};
 use crate::camera::Camera;
 use crate::error::{FrameError, ObjectRef};
 use crate::math::vec3::Vec3;
@@ -99,7 +99,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         let Some((j0, j1)) = span(offset.y, size.height, clip.top_left.y, clip.size.height) else {
             return Ok(None);
         };
-        let (scale, culled) = frame_scale::<N, L, P, D, S, T>(scene, camera, options, cull)?;
+        let (scale, cone) = frame_scale::<N, L, P, D, S>(scene, camera, cull)?;
         // How far the stepping's directions can be from the ideal ones (widens the spans).
         let step_err = S::error_bound(camera);
         let row = RowGeometry {
@@ -114,7 +114,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         for s in scene.spheres() {
             // A sphere the scale left out is one no ray of the frame meets: it gets
             // no span, so its constants (outside the frame's range) are never read.
-            let unseen = culled && !seen::<T>(s, camera, step_err);
+            let unseen = cone.is_some_and(|c| c.misses(s.center - camera.eye(), s.radius));
             Self::push_sphere::<M, S>(spheres, s, camera, options, &row, step_err, scale, unseen);
         }
         Ok(Some(Self {
@@ -176,34 +176,59 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
 
 /// The sizes a frame's [`Scale`] must bring into its exact range: the largest and the
 /// smallest non-zero one, and whose they are. An object's size is its largest
-/// coordinate relative to the eye, or a sphere's radius where that is larger.
+/// coordinate relative to the eye, or a sphere's radius where that is larger; one that
+/// overflowed `f32` (coordinates ±10³⁸ apart) is infinite, which no scale holds.
 #[derive(Clone, Copy)]
 struct Sizes {
     hi: f32,
     far: ObjectRef,
     lo: f32,
     near: ObjectRef,
-    /// The first object whose size overflowed `f32`.
-    not_finite: Option<ObjectRef>,
 }
 
 impl Sizes {
-    const EMPTY: Self = Self {
-        hi: 0.0,
-        far: ObjectRef::Sphere(0),
-        lo: f32::INFINITY,
-        near: ObjectRef::Sphere(0),
-        not_finite: None,
-    };
+    /// The sizes of `scene`'s objects seen from `eye`, but for the spheres `cone`
+    /// proves no ray meets. Out of line: one copy for both of `frame_scale`'s passes.
+    #[inline(never)]
+    fn of<const N: usize, const L: usize, const P: usize, const D: usize>(
+        scene: &Scene<N, L, P, D>,
+        eye: Vec3,
+        cone: Option<&ViewCone>,
+    ) -> Self {
+        let mut sizes = Self {
+            hi: 0.0,
+            far: ObjectRef::Sphere(0),
+            lo: f32::INFINITY,
+            near: ObjectRef::Sphere(0),
+        };
+        for (i, p) in scene.planes().iter().enumerate() {
+            sizes.add((p.point - eye).max_abs(), ObjectRef::Plane(i));
+        }
+        for (i, l) in scene.lights().iter().enumerate() {
+            if let Light::Point { position, .. } = *l {
+                sizes.add((position - eye).max_abs(), ObjectRef::Light(i));
+            }
+        }
+        for (i, s) in scene.spheres().iter().enumerate() {
+            sizes.add_sphere(i, s, eye, cone);
+        }
+        sizes
+    }
+
+    /// One sphere's size. Out of line: the loop over a scene type's few spheres is
+    /// unrolled, and this once per sphere would be as many copies.
+    #[inline(never)]
+    fn add_sphere(&mut self, i: usize, s: &Sphere, eye: Vec3, cone: Option<&ViewCone>) {
+        let l = s.center - eye;
+        if cone.is_some_and(|c| c.misses(l, s.radius)) {
+            return;
+        }
+        let (m, r) = (l.max_abs(), s.radius.abs());
+        self.add(if r > m { r } else { m }, ObjectRef::Sphere(i));
+    }
 
     #[inline(always)]
     fn add(&mut self, m: f32, object: ObjectRef) {
-        if m == f32::INFINITY {
-            if self.not_finite.is_none() {
-                self.not_finite = Some(object);
-            }
-            return;
-        }
         // Comparisons pass NaN over: a NaN object never decides the scale. A size of 0
         // (a point light at the eye) needs no range.
         if m > self.hi {
@@ -217,97 +242,48 @@ impl Sizes {
     }
 
     fn scale(&self) -> Result<Scale, FrameError> {
-        if let Some(o) = self.not_finite {
-            return Err(FrameError::NotFinite(o));
-        }
         if !(self.hi > 0.0) {
             return Ok(Scale(1.0));
         }
-        Scale::for_range(self.lo, self.hi).ok_or(FrameError::Magnitudes {
-            far: self.far,
-            near: self.near,
-        })
-    }
-}
-
-/// A sphere's size (see [`Sizes`]).
-#[inline(always)]
-fn sphere_size(s: &Sphere, eye: Vec3) -> f32 {
-    let (l, r) = ((s.center - eye).max_abs(), s.radius.abs());
-    if r > l {
-        r
-    } else {
-        l
-    }
-}
-
-/// Whether a primary ray through a pixel centre of the whole image can meet the
-/// sphere: its silhouette, enlarged for the test's rounding and the stepping's error,
-/// meets the image, or where it is not a bounded ellipse, the sphere is not outside
-/// the image's cone of rays. Computed in the scene's own units (the silhouette is homogeneous
-/// in the lengths, and its `f64` arithmetic holds any finite `f32` geometry).
-fn seen<T: TestStrategy>(s: &Sphere, camera: &Camera, step_err: f32) -> bool {
-    let l = s.center - camera.eye();
-    let silhouette = Silhouette::new(l, s.radius, camera, T::MARGIN, step_err);
-    if silhouette.is_all() {
-        // Not a bounded ellipse (beside or behind the eye): the cone of the image.
-        !Silhouette::outside_view(l, s.radius, camera, T::MARGIN, step_err)
-    } else {
-        silhouette.meets_image(camera.size())
+        Scale::for_range(self.lo, self.hi)
+            .filter(|_| self.hi.is_finite())
+            .ok_or(FrameError::Magnitudes {
+                far: self.far,
+                near: self.near,
+            })
     }
 }
 
 /// The frame's [`Scale`], once per frame from the scene, the camera and the method —
 /// never from the clip, so a band, a clipped and a whole render share it: the power of
 /// two nearest 1 that brings the size of every object the frame's rays can meet into
-/// `[2⁻⁴⁰, 2⁵⁰)` ([`Scale::for_range`]), and whether spheres were left out for it.
+/// `[2⁻⁴⁰, 2⁵⁰)` ([`Scale::for_range`]), and the cone outside which spheres were left
+/// out for it, if they were.
 ///
 /// Every object counts, except where the frame's rays are primary rays through pixel
-/// centres alone (`cull`, a Lab #1 frame of one ray a pixel with span culling): there a
-/// sphere outside the view ([`seen`]) is met by no ray, and is left out when the others
-/// need a range it cannot share (a sphere 10³⁰ away behind the eye). Where no power of
+/// centres alone (`cull`, a Lab #1 frame of one ray a pixel): there a sphere outside
+/// the cone of the image's rays ([`ViewCone`]) is met by no ray, and is left out when
+/// the others need a range it cannot share (a sphere 10³⁰ away beside or behind the
+/// eye). Where no power of
 /// two fits, the frame is refused ([`FrameError::Magnitudes`]): a near object's
 /// squares would fall below `f32`'s normal numbers and draw a wrong picture.
 #[inline(never)]
-pub(crate) fn frame_scale<
-    const N: usize,
-    const L: usize,
-    const P: usize,
-    const D: usize,
-    S: Stepper,
-    T: TestStrategy,
->(
+pub(crate) fn frame_scale<const N: usize, const L: usize, const P: usize, const D: usize, S: Stepper>(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
-    options: Options,
     cull: bool,
-) -> Result<(Scale, bool), FrameError> {
+) -> Result<(Scale, Option<ViewCone>), FrameError> {
     let eye = camera.eye();
-    let mut sizes = Sizes::EMPTY;
-    for (i, p) in scene.planes().iter().enumerate() {
-        sizes.add((p.point - eye).max_abs(), ObjectRef::Plane(i));
-    }
-    for (i, l) in scene.lights().iter().enumerate() {
-        if let Light::Point { position, .. } = *l {
-            sizes.add((position - eye).max_abs(), ObjectRef::Light(i));
-        }
-    }
-    let others = sizes;
-    for (i, s) in scene.spheres().iter().enumerate() {
-        sizes.add(sphere_size(s, eye), ObjectRef::Sphere(i));
-    }
+    let sizes = Sizes::of(scene, eye, None);
     match sizes.scale() {
-        Ok(scale) => Ok((scale, false)),
-        Err(e) if !(cull && options.span_culling) => Err(e),
-        Err(_) => {
-            let step_err = S::error_bound(camera);
-            let mut seen_sizes = others;
-            for (i, s) in scene.spheres().iter().enumerate() {
-                if seen::<T>(s, camera, step_err) {
-                    seen_sizes.add(sphere_size(s, eye), ObjectRef::Sphere(i));
-                }
-            }
-            seen_sizes.scale().map(|scale| (scale, true))
+        Ok(scale) => Ok((scale, None)),
+        Err(e) => {
+            let Some(cone) = ViewCone::new(camera, S::error_bound(camera)).filter(|_| cull) else {
+                return Err(e);
+            };
+            Sizes::of(scene, eye, Some(&cone))
+                .scale()
+                .map(|scale| (scale, Some(cone)))
         }
     }
 }

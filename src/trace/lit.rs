@@ -221,27 +221,32 @@ fn floor(x: f32) -> i32 {
 #[derive(Clone, Copy, Debug)]
 enum FrameLight {
     /// Unit vector toward the light.
-    Directional { l: Vec3, intensity: f32, exact: bool },
+    Directional { l: Vec3, intensity: f32 },
     /// Eye-relative, scaled position.
-    Point { p: Vec3, intensity: f32, exact: bool },
+    Point { p: Vec3, intensity: f32 },
 }
 
 impl FrameLight {
-    /// `exact`: its shadow rays take [`LitRow::occluded_exact`] (see [`Ties`]); set
-    /// once the frame's ties are known.
     fn new(light: &Light, eye: Vec3, scale: Scale) -> Option<Self> {
         Some(match *light {
             Light::Directional { direction, intensity } => FrameLight::Directional {
                 l: -direction.try_normalize()?,
                 intensity,
-                exact: false,
             },
             Light::Point { position, intensity } => FrameLight::Point {
                 p: (position - eye) * scale.0,
                 intensity,
-                exact: false,
             },
         })
+    }
+
+    /// The lamp's position (a point light's), for the exact shadow path.
+    #[inline(always)]
+    fn at(&self) -> Vec3 {
+        match *self {
+            FrameLight::Point { p, .. } => p,
+            FrameLight::Directional { .. } => Vec3::ZERO,
+        }
     }
 }
 
@@ -295,17 +300,21 @@ struct Ties<const N: usize, const L: usize, const P: usize> {
     plane_twin: [Object; P],
     /// Some object has a lower-numbered twin.
     twins: bool,
+    /// Per light: its shadow rays need the ties (see [`Ties::exact`]).
+    exact: [bool; L],
+    /// Some light's do: one test per shadow ray for a frame without ties.
+    any: bool,
     /// The scene's sphere count (the planes' object numbers follow).
     n_spheres: usize,
 }
 
 impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
-    /// The ties of `scene` seen from `eye`, and each light's `exact` flag in `lights`
-    /// (the frame's lights, in the scene's order less the unusable ones). Once per
-    /// frame, out of line.
+    /// The ties of `scene` seen from `eye`, and each light's `exact` flag (the frame's
+    /// lights: the scene's in order, less the unusable ones). Once per frame, out of
+    /// line.
     #[cold]
     #[inline(never)]
-    fn new<const D: usize>(scene: &Scene<N, L, P, D>, eye: Vec3, lights: &mut [FrameLight]) -> Self {
+    fn new<const D: usize>(scene: &Scene<N, L, P, D>, eye: Vec3) -> Self {
         let v = |a: Vec3| [f64::from(a.x), f64::from(a.y), f64::from(a.z)];
         let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
         let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -346,11 +355,9 @@ impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
             Light::Directional { direction, .. } => direction.try_normalize().is_some(),
             Light::Point { .. } => true,
         });
-        for (((light, fl), row), prow) in usable
-            .zip(lights.iter_mut())
-            .zip(&mut on_sphere)
-            .zip(&mut on_plane)
-        {
+        let mut exact = [false; L];
+        let mut any = false;
+        for (((light, exact), row), prow) in usable.zip(&mut exact).zip(&mut on_sphere).zip(&mut on_plane) {
             let mut on = false;
             if let Light::Point { position, .. } = *light {
                 let at = v(position);
@@ -371,11 +378,8 @@ impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
                     on |= *flag;
                 }
             }
-            match fl {
-                FrameLight::Directional { exact, .. } | FrameLight::Point { exact, .. } => {
-                    *exact = on || twins
-                }
-            }
+            *exact = on || twins;
+            any |= *exact;
         }
         Self {
             on_sphere,
@@ -383,8 +387,26 @@ impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
             sphere_twin,
             plane_twin,
             twins,
+            exact,
+            any,
             n_spheres,
         }
+    }
+
+    /// Which lights' shadow rays take [`LitRow::occluded_exact`] (their lamp lies on
+    /// some object, or the frame has coincident objects), as a mask for the pixel loop:
+    /// bit `k` for light `k`, bit 31 for every light from 31 on.
+    fn exact_mask(&self) -> u32 {
+        if !self.any {
+            return 0;
+        }
+        let mut mask = 0;
+        for (k, &e) in self.exact.iter().enumerate() {
+            if e {
+                mask |= 1 << k.min(31);
+            }
+        }
+        mask
     }
 
     /// The lowest-numbered object identical to `k` (`k` itself if none).
@@ -407,6 +429,10 @@ struct LitFrame<'a, T: TestStrategy, const N: usize, const L: usize, const P: us
     spheres: &'a [FrameSphere<T, LitSphere>],
     /// Lamps on surfaces and coincident objects.
     ties: &'a Ties<N, L, P>,
+    /// [`Ties::exact_mask`]: 0 in a frame without ties, one test per shadow ray.
+    exact_lights: u32,
+    /// [`Ties::twins`], where the reflected ray's loop reads it.
+    twins: bool,
     /// Per light and sphere: where on the image the sphere's shadow on the first plane
     /// can be (see [`shadow_silhouette`]).
     shadow: &'a [[Silhouette; N]; L],
@@ -643,7 +669,7 @@ fn render_with<
             let _ = lights.push(fl);
         }
     }
-    let ties = Ties::new(scene, eye, &mut lights);
+    let ties = Ties::new(scene, eye);
     let size = camera.size();
     let d_max = f64::from(camera.first_direction().length())
         + f64::from(size.width) * f64::from(camera.pixel_step().length())
@@ -664,6 +690,8 @@ fn render_with<
     let lit = LitFrame {
         spheres: frame.spheres,
         ties: &ties,
+        exact_lights: ties.exact_mask(),
+        twins: ties.twins,
         shadow: &shadow,
         shadow_rows: &shadow_rows,
         planes: &planes,
@@ -695,8 +723,16 @@ struct LitRow<'f, 's, T: TestStrategy, Q, O, const N: usize, const L: usize, con
     /// Per plane: columns `[lo, lo + len)` whose rays can hit it.
     spans: [(u32, u32); P],
     occluder: [Object; L],
+    /// The shadow test: [`Self::occluded`], or in a frame with ties
+    /// [`Self::occluded_with_ties`] — chosen per row, called through a pointer, so a
+    /// frame without ties runs the loop it would without them.
+    shadow: Shadow<'f, 's, T, Q, O, N, L, P, D>,
     marker: core::marker::PhantomData<(Q, O)>,
 }
+
+/// [`LitRow::shadow`]'s type.
+type Shadow<'f, 's, T, Q, O, const N: usize, const L: usize, const P: usize, const D: usize> =
+    fn(&mut LitRow<'f, 's, T, Q, O, N, L, P, D>, usize, Vec3, Vec3, f32, Object, bool, Option<u32>) -> bool;
 
 /// No occluder cached.
 const NONE: Object = usize::MAX;
@@ -747,6 +783,11 @@ impl<
             f,
             spans,
             occluder: [NONE; L],
+            shadow: if f.exact_lights != 0 {
+                Self::occluded_with_ties
+            } else {
+                Self::occluded
+            },
             marker: core::marker::PhantomData,
         }
     }
@@ -755,7 +796,7 @@ impl<
     /// object `o` lies on (`inside`: on a sphere's inner surface).
     fn closest(&self, o: Vec3, dir: Vec3, from: Object, inside: bool) -> Option<(Object, f32)> {
         let f = self.f;
-        if f.ties.twins {
+        if f.twins {
             return self.closest_twins(o, dir, from, inside);
         }
         let a = dir.dot(dir);
@@ -795,6 +836,7 @@ impl<
     /// [`Self::closest`] in a frame with coincident objects ([`Ties`]): an object with
     /// a lower-numbered twin is left out (the twin computes the same bits and wins the
     /// tie), and the twin of the surface the ray leaves is that surface.
+    #[cold]
     #[inline(never)]
     fn closest_twins(&self, o: Vec3, dir: Vec3, from: Object, inside: bool) -> Option<(Object, f32)> {
         let f = self.f;
@@ -914,23 +956,40 @@ impl<
     /// lower-numbered twin is left out, the twin of the surface `o` lies on is that
     /// surface, and an object the lamp (at `at`) lies on is decided by the side the
     /// segment reaches the lamp from.
+    /// [`Self::occluded`] in a frame with ties: [`Self::occluded_exact`] for the lights
+    /// that need it.
     #[allow(clippy::too_many_arguments)]
     #[inline(never)]
-    fn occluded_exact(
-        &self,
+    fn occluded_with_ties(
+        &mut self,
         light: usize,
-        at: Vec3,
         o: Vec3,
         l: Vec3,
         dist: f32,
         from: Object,
         inside: bool,
+        column: Option<u32>,
     ) -> bool {
+        if self.f.exact_lights & (1 << light.min(31)) != 0 {
+            self.occluded_exact(light, o, l, dist, from, inside)
+        } else {
+            self.occluded(light, o, l, dist, from, inside, column)
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    #[cold]
+    #[inline(never)]
+    fn occluded_exact(&self, light: usize, o: Vec3, l: Vec3, dist: f32, from: Object, inside: bool) -> bool {
         let f = self.f;
         let ties = f.ties;
         let from = ties.twin(from);
         let n = f.spheres.len();
-        let (Some(on_sphere), Some(on_plane)) = (ties.on_sphere.get(light), ties.on_plane.get(light)) else {
+        let (Some(on_sphere), Some(on_plane), Some(at)) = (
+            ties.on_sphere.get(light),
+            ties.on_plane.get(light),
+            f.lights.get(light).map(FrameLight::at),
+        ) else {
             return false;
         };
         for k in 0..n + f.planes.len() {
@@ -1013,18 +1072,12 @@ impl<
         };
         let (mut diffuse, mut spec) = (0.0f32, 0.0f32);
         for (index, light) in f.lights.iter().enumerate() {
-            let (l, dist, intensity, at, exact) = match *light {
-                FrameLight::Directional { l, intensity, exact } => {
-                    (l, f32::INFINITY, intensity, Vec3::ZERO, exact)
-                }
-                FrameLight::Point {
-                    p: at,
-                    intensity,
-                    exact,
-                } => {
+            let (l, dist, intensity) = match *light {
+                FrameLight::Directional { l, intensity } => (l, f32::INFINITY, intensity),
+                FrameLight::Point { p: at, intensity } => {
                     let to = at - p;
                     let dist = sqrt_exact(to.dot(to));
-                    (to * (1.0 / dist), dist, intensity, at, exact)
+                    (to * (1.0 / dist), dist, intensity)
                 }
             };
             let nl = s.n.dot(l);
@@ -1035,11 +1088,7 @@ impl<
             if f.shadows {
                 let o = O::start(p, l, f.eps);
                 let dist = if O::TESTS_SELF { dist - f.eps } else { dist };
-                let blocked = if exact {
-                    self.occluded_exact(index, at, o, l, dist, k, s.inside)
-                } else {
-                    self.occluded(index, o, l, dist, k, s.inside, column)
-                };
+                let blocked = (self.shadow)(self, index, o, l, dist, k, s.inside, column);
                 if blocked {
                     continue;
                 }
@@ -1152,18 +1201,12 @@ impl<
         };
         let (mut diffuse, mut spec) = (0.0f32, 0.0f32);
         for (index, light) in f.lights.iter().enumerate() {
-            let (l, dist, intensity, at, exact) = match *light {
-                FrameLight::Directional { l, intensity, exact } => {
-                    (l, f32::INFINITY, intensity, Vec3::ZERO, exact)
-                }
-                FrameLight::Point {
-                    p: at,
-                    intensity,
-                    exact,
-                } => {
+            let (l, dist, intensity) = match *light {
+                FrameLight::Directional { l, intensity } => (l, f32::INFINITY, intensity),
+                FrameLight::Point { p: at, intensity } => {
                     let to = at - p;
                     let dist = sqrt_exact(to.dot(to));
-                    (to * (1.0 / dist), dist, intensity, at, exact)
+                    (to * (1.0 / dist), dist, intensity)
                 }
             };
             let nl = s.n.dot(l);
@@ -1174,11 +1217,7 @@ impl<
             if f.shadows {
                 let o = O::start(p, l, f.eps);
                 let dist = if O::TESTS_SELF { dist - f.eps } else { dist };
-                let blocked = if exact {
-                    self.occluded_exact(index, at, o, l, dist, k, s.inside)
-                } else {
-                    self.occluded(index, o, l, dist, k, s.inside, column)
-                };
+                let blocked = (self.shadow)(self, index, o, l, dist, k, s.inside, column);
                 // Which lights reach the surface: a shadow boundary is an edge.
                 id.mix(2 * index as u32 + 1 + u32::from(blocked));
                 if blocked {

@@ -132,7 +132,6 @@ fn outcome<const N: usize, const L: usize, const P: usize, const D: usize>(
     if let Err(e) = render.check() {
         match e {
             FrameError::Magnitudes { far, .. } => assert_eq!(far, object, "{e}"),
-            FrameError::NotFinite(o) => assert_eq!(o, object, "{e}"),
             other => panic!("{other:?}"),
         }
         let mut band = vec![Rgb888::new(1, 2, 3); size.width as usize * size.height as usize];

@@ -254,9 +254,6 @@ fn frame_message(scene: &Path, e: FrameError) -> String {
     };
     let scene = scene.display();
     match e {
-        FrameError::NotFinite(o) => {
-            format!("{scene}: {}: its distance from the eye is beyond f32's range", field(o))
-        }
         FrameError::Magnitudes { far, near } => format!(
             "{scene}: {}: more than 2^90 times farther from the eye (or larger) than {}: \
              f32 cannot draw both exactly in one frame; move it nearer or leave it out",

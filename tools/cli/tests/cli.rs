@@ -1571,7 +1571,8 @@ fn a_scene_no_frame_can_hold_exits_2_naming_the_object() {
     );
     assert_eq!(std::fs::read(dir.join("far.png")).unwrap(), b"keep me");
 
-    let sphere = format!("{lab}\n[[sphere]]\ncenter = [0.0, -1e30, 0.0]\nradius = 1.0\ncolor = [255, 255, 255]\n");
+    let sphere =
+        format!("{lab}\n[[sphere]]\ncenter = [0.0, -1e30, 0.0]\nradius = 1.0\ncolor = [255, 255, 255]\n");
     let o = run_in(&dir, &[write(&dir, "hidden.toml", &sphere)]);
     assert_rendered(&o);
     let o = run_in(&dir, &[write(&dir, "lab.toml", &lab)]);

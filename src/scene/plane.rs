@@ -7,7 +7,10 @@ use crate::error::PlaneError;
 use crate::math::vec3::Vec3;
 use crate::scene::material::Material;
 
-/// An infinite plane through `point` with normal `normal` (non-zero, any length).
+/// An infinite plane through `point` with normal `normal` (non-zero, any length). Any
+/// point of the plane will do, however far from the eye: a frame anchors the plane at
+/// its point nearest the eye (the checker moved by whole pairs of cells), so only the
+/// plane's distance from the eye enters the frame's range of sizes.
 ///
 /// With a checker colour the plane is tiled in squares of side `checker_size`: in plane
 /// coordinates `x₁ = (p − point)·e₁`, `x₂ = (p − point)·e₂` (with `n` the unit normal,
@@ -79,6 +82,65 @@ impl Plane {
     pub const fn with_material(mut self, material: Material) -> Self {
         self.material = material;
         self
+    }
+
+    /// The unit normal `n` and the checker basis `e₁`, `e₂` (see [`Plane`]); `None`
+    /// for a zero or non-finite normal.
+    pub(crate) fn basis(&self) -> Option<(Vec3, Vec3, Vec3)> {
+        let n = self.normal.try_normalize()?;
+        // The world axis along which n is smallest (ties x, y, z).
+        let (ax, ay, az) = (n.x.abs(), n.y.abs(), n.z.abs());
+        let axis = if ax <= ay && ax <= az {
+            Vec3::new(1.0, 0.0, 0.0)
+        } else if ay <= az {
+            Vec3::new(0.0, 1.0, 0.0)
+        } else {
+            Vec3::new(0.0, 0.0, 1.0)
+        };
+        let e1 = n.cross(axis).try_normalize()?;
+        Some((n, e1, n.cross(e1)))
+    }
+
+    /// The plane's point as a frame anchors it, relative to `eye`: `point − eye`, or,
+    /// where that is more than 2¹⁰ times the plane's distance from the eye plus two
+    /// checker cells, the plane's point nearest the eye moved along `e₁` and `e₂` by the
+    /// given point's offsets modulo two cells. The same plane and the same cells (a
+    /// shift by whole pairs of cells keeps every cell's parity), but no product of the
+    /// frame's plane test cancels: with the point far along the plane, `(q − o)·n` in
+    /// `f32` would lose the plane's position to rounding of `|q|` (a point 10⁸ away on
+    /// a tilted plane misplaces it by units). Once per frame, in `f64`, where each
+    /// product of two `f32` values is exact.
+    pub(crate) fn anchor(&self, eye: Vec3) -> Vec3 {
+        let q = self.point - eye;
+        let Some((n, e1, e2)) = self.basis() else {
+            return q;
+        };
+        let v = |a: Vec3| [f64::from(a.x), f64::from(a.y), f64::from(a.z)];
+        let dot = |[a0, a1, a2]: [f64; 3], [b0, b1, b2]: [f64; 3]| a0 * b0 + a1 * b1 + a2 * b2;
+        let ([p0, p1, p2], [x0, x1, x2]) = (v(self.point), v(eye));
+        let q64 = [p0 - x0, p1 - x1, p2 - x2];
+        let s = dot(q64, v(n));
+        let period = 2.0 * f64::from(self.checker_size);
+        let reach = s.abs() + if self.checker.is_some() { period } else { 0.0 };
+        if !(f64::from(q.max_abs()) > 1024.0 * reach) {
+            return q;
+        }
+        let (r1, r2) = if self.checker.is_some() {
+            (
+                libm::fmod(dot(q64, v(e1)), period),
+                libm::fmod(dot(q64, v(e2)), period),
+            )
+        } else {
+            (0.0, 0.0)
+        };
+        let at =
+            |n: f32, e1: f32, e2: f32| (f64::from(n) * s + f64::from(e1) * r1 + f64::from(e2) * r2) as f32;
+        let anchored = Vec3::new(at(n.x, e1.x, e2.x), at(n.y, e1.y, e2.y), at(n.z, e1.z, e2.z));
+        if anchored.is_finite() {
+            anchored
+        } else {
+            q
+        }
     }
 
     /// The plane if its numbers are usable: finite point and normal, a normal that is

@@ -202,7 +202,7 @@ impl Sizes {
             near: ObjectRef::Sphere(0),
         };
         for (i, p) in scene.planes().iter().enumerate() {
-            sizes.add((p.point - eye).max_abs(), ObjectRef::Plane(i));
+            sizes.add(p.anchor(eye).max_abs(), ObjectRef::Plane(i));
         }
         for (i, l) in scene.lights().iter().enumerate() {
             if let Light::Point { position, .. } = *l {

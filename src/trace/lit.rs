@@ -108,7 +108,7 @@ impl Shader for LitSphere {
 /// A plane as the frame sees it.
 #[derive(Clone, Copy, Debug)]
 struct FramePlane {
-    /// `point − eye`, scaled.
+    /// The plane's anchor relative to the eye ([`Plane::anchor`]), scaled.
     q: Vec3,
     /// The unit normal, as given (not turned).
     n: Vec3,
@@ -142,19 +142,8 @@ impl FramePlane {
 
     /// The plane's constants; `None` for a zero or non-finite normal.
     fn new(plane: &crate::scene::plane::Plane, eye: Vec3, scale: Scale) -> Option<Self> {
-        let n = plane.normal.try_normalize()?;
-        let q = (plane.point - eye) * scale.0;
-        // The checker basis: the world axis along which n is smallest (ties x, y, z).
-        let (ax, ay, az) = (n.x.abs(), n.y.abs(), n.z.abs());
-        let axis = if ax <= ay && ax <= az {
-            Vec3::new(1.0, 0.0, 0.0)
-        } else if ay <= az {
-            Vec3::new(0.0, 1.0, 0.0)
-        } else {
-            Vec3::new(0.0, 0.0, 1.0)
-        };
-        let e1 = n.cross(axis).try_normalize()?;
-        let e2 = n.cross(e1);
+        let (n, e1, e2) = plane.basis()?;
+        let q = plane.anchor(eye) * scale.0;
         Some(Self {
             q,
             n,

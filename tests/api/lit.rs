@@ -531,3 +531,57 @@ fn a_checker_finer_than_f32_resolves_draws_the_planes_colour() {
     }
     assert!(floor_pixels > 1000, "{floor_pixels} floor pixels");
 }
+
+/// A plane is where it is, not where its point is: a tilted, checkered floor given by a
+/// point 2²⁷ away along it draws as the same floor given by its point nearest the
+/// origin — the frame anchors it near the eye, its cells moved by whole pairs — where
+/// the `f32` plane test from the far point misplaced it by units (every floor pixel
+/// wrong).
+#[test]
+fn a_plane_is_where_it_is_not_where_its_point_is() {
+    let (even, odd) = (Rgb888::new(220, 220, 220), Rgb888::new(40, 40, 40));
+    let floor = |point: Vec3| {
+        let mut s: Scene<1, 1, 1, 0> = Scene::new(Rgb888::new(20, 30, 60));
+        s.push_light(Light::directional(Vec3::new(-1.0, -2.0, -1.0), 0.8))
+            .unwrap();
+        s.push(Sphere::new(
+            Vec3::new(0.0, 1.0, 0.0),
+            0.8,
+            Rgb888::new(200, 40, 40),
+        ))
+        .unwrap();
+        // Through the origin, tilted: (0, 2²⁷, −2²⁷) lies on it exactly.
+        s.push_plane(Plane::new(point, Vec3::new(0.0, 1.0, 1.0), even).with_checker(odd, 0.5))
+            .unwrap();
+        s
+    };
+    let camera = Camera::new(
+        Vec3::new(0.3, 4.0, 6.0),
+        Vec3::ZERO,
+        Vec3::new(0.0, 1.0, 0.0),
+        1.0,
+        Size::new(48, 48),
+    )
+    .unwrap();
+    let colours = |s: &Scene<1, 1, 1, 0>| {
+        let mut out = Vec::new();
+        Render::<1, Rgb888, 1, 1, 0>::new(s, &camera).trace(|x| out.push(x.color));
+        out
+    };
+    let far = 134_217_728.0; // 2²⁷: a multiple of the checker's period of 1
+    let (near, far) = (
+        colours(&floor(Vec3::ZERO)),
+        colours(&floor(Vec3::new(0.0, far, -far))),
+    );
+    let apart = near.iter().zip(&far).filter(|(a, b)| a != b).count();
+    // Both cell colours in view, lit (the background and the sphere besides).
+    let mut distinct = near.clone();
+    distinct.sort_by_key(|c| (c.r(), c.g(), c.b()));
+    distinct.dedup();
+    assert!(distinct.len() >= 4, "{distinct:?}");
+    assert!(
+        apart <= near.len() / 100,
+        "{apart} of {} pixels differ",
+        near.len()
+    );
+}

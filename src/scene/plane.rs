@@ -125,14 +125,18 @@ impl Plane {
         if !(f64::from(q.max_abs()) > 1024.0 * reach) {
             return q;
         }
-        let (r1, r2) = if self.checker.is_some() {
-            (
-                libm::fmod(dot(q64, v(e1)), period),
-                libm::fmod(dot(q64, v(e2)), period),
-            )
-        } else {
-            (0.0, 0.0)
+        // The offsets less whole periods: `a − period·⌊a/period⌋` (libm's `fmod` has
+        // panicking branches, which `no_std` firmware must not link); off from the
+        // exact remainder by the `f64` rounding of `a`, far inside a cell wherever
+        // `|a|` is less than 2⁴⁰ cells.
+        let reduce = |a: f64| {
+            if self.checker.is_some() {
+                a - period * libm::floor(a / period)
+            } else {
+                0.0
+            }
         };
+        let (r1, r2) = (reduce(dot(q64, v(e1))), reduce(dot(q64, v(e2))));
         let at =
             |n: f32, e1: f32, e2: f32| (f64::from(n) * s + f64::from(e1) * r1 + f64::from(e2) * r2) as f32;
         let anchored = Vec3::new(at(n.x, e1.x, e2.x), at(n.y, e1.y, e2.y), at(n.z, e1.z, e2.z));

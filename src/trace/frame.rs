@@ -201,12 +201,17 @@ impl Sizes {
             lo: f32::INFINITY,
             near: ObjectRef::Sphere(0),
         };
-        for (i, p) in scene.planes().iter().enumerate() {
-            sizes.add(p.anchor(eye).max_abs(), ObjectRef::Plane(i));
+        // Constant conditions: a scene type without planes or lights links neither loop.
+        if P > 0 {
+            for (i, p) in scene.planes().iter().enumerate() {
+                sizes.add(p.anchor(eye).max_abs(), ObjectRef::Plane(i));
+            }
         }
-        for (i, l) in scene.lights().iter().enumerate() {
-            if let Light::Point { position, .. } = *l {
-                sizes.add((position - eye).max_abs(), ObjectRef::Light(i));
+        if L > 0 {
+            for (i, l) in scene.lights().iter().enumerate() {
+                if let Light::Point { position, .. } = *l {
+                    sizes.add((position - eye).max_abs(), ObjectRef::Light(i));
+                }
             }
         }
         for (i, s) in scene.spheres().iter().enumerate() {

@@ -514,7 +514,8 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Visit
         let r = self.0;
         // Only a Lab #1 frame of one ray a pixel culls for its scale (as `lab1.rs` does).
         let cull = !Scene::<N, L, P, D>::FEATURES && r.sampling == Sampling::Center;
-        crate::trace::frame::frame_scale::<N, L, P, D, S>(r.scene, r.camera, cull).map(|_| ())
+        crate::trace::frame::frame_scale::<N, L, P, D>(r.scene, r.camera, S::error_bound(r.camera), cull)
+            .map(|_| ())
     }
 }
 

@@ -18,6 +18,7 @@ use crate::math::vec3::Vec3;
 use crate::method::intersect::{RowGeometry, Scale, SphereGeom, TestStrategy};
 use crate::method::stepping::Stepper;
 use crate::scene::light::Light;
+use crate::scene::plane::Plane;
 use crate::scene::sphere::Sphere;
 use crate::scene::Scene;
 use crate::trace::options::Options;
@@ -58,9 +59,10 @@ pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
 impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
     /// Clips the image (placed at `offset`) to `clip` and builds every sphere's
     /// per-frame constants into `spheres` (`M` at least the scene's sphere count: a
-    /// sphere beyond `M` would be left out) in the frame's units ([`frame_scale`];
-    /// `cull`: the frame's rays are primary rays through pixel centres alone); `None`
-    /// if nothing is visible, the frame's [`FrameError`] if it cannot be drawn exactly.
+    /// sphere beyond `M` would be left out) in the frame's units, as [`frame_scale`]
+    /// decided them (the spheres outside its cone, if any, given no span); `step_err`
+    /// is the stepping's direction error bound, which widens the spans. `None` if
+    /// nothing is visible.
     ///
     /// Out of line: its temporaries (the f64 silhouette computations) are dead before
     /// the scanline loop starts, so they do not add to the pixel loop's stack.
@@ -80,8 +82,9 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         clip: Rectangle,
         offset: Point,
         spheres: &'a mut Vec<FrameSphere<T, Sh>, M>,
-        cull: bool,
-    ) -> Result<Option<Self>, FrameError> {
+        step_err: f32,
+        (scale, culled): (Scale, bool),
+    ) -> Option<Self> {
         let size = camera.size();
         // Clip in i64: no overflow for any offset or target size. A target whose box
         // reaches past `i32::MAX` is clipped at the last coordinate that exists, so no
@@ -93,15 +96,15 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
                 .min(i64::from(i32::MAX) + 1);
             (lo < hi).then(|| ((lo - i64::from(origin)) as u32, (hi - i64::from(origin)) as u32))
         };
-        let Some((i0, i1)) = span(offset.x, size.width, clip.top_left.x, clip.size.width) else {
-            return Ok(None);
+        let (i0, i1) = span(offset.x, size.width, clip.top_left.x, clip.size.width)?;
+        let (j0, j1) = span(offset.y, size.height, clip.top_left.y, clip.size.height)?;
+        // The cone outside which the scale left spheres out (rare: rebuilt here rather
+        // than carried by every caller).
+        let cone = if culled {
+            ViewCone::new(camera, step_err)
+        } else {
+            None
         };
-        let Some((j0, j1)) = span(offset.y, size.height, clip.top_left.y, clip.size.height) else {
-            return Ok(None);
-        };
-        let (scale, cone) = frame_scale::<N, L, P, D, S>(scene, camera, cull)?;
-        // How far the stepping's directions can be from the ideal ones (widens the spans).
-        let step_err = S::error_bound(camera);
         let row = RowGeometry {
             du: camera.pixel_step(),
             anchor: options.anchor_interval,
@@ -117,7 +120,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
             let unseen = cone.is_some_and(|c| c.misses(s.center - camera.eye(), s.radius));
             Self::push_sphere::<M, S>(spheres, s, camera, options, &row, step_err, scale, unseen);
         }
-        Ok(Some(Self {
+        Some(Self {
             camera,
             scale,
             spheres,
@@ -127,7 +130,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
             j0,
             j1,
             offset,
-        }))
+        })
     }
 
     /// One sphere's per-frame constants and silhouette, lengths scaled by `scale`.
@@ -187,37 +190,34 @@ struct Sizes {
 }
 
 impl Sizes {
-    /// The sizes of `scene`'s objects seen from `eye`, but for the spheres `cone`
-    /// proves no ray meets. Out of line: one copy for both of `frame_scale`'s passes.
+    const EMPTY: Self = Self {
+        hi: 0.0,
+        far: ObjectRef::Sphere(0),
+        lo: f32::INFINITY,
+        near: ObjectRef::Sphere(0),
+    };
+
+    /// The sizes of the planes and point lights seen from `eye`.
     #[inline(never)]
-    fn of<const N: usize, const L: usize, const P: usize, const D: usize>(
-        scene: &Scene<N, L, P, D>,
-        eye: Vec3,
-        cone: Option<&ViewCone>,
-    ) -> Self {
-        let mut sizes = Self {
-            hi: 0.0,
-            far: ObjectRef::Sphere(0),
-            lo: f32::INFINITY,
-            near: ObjectRef::Sphere(0),
-        };
-        // Constant conditions: a scene type without planes or lights links neither loop.
-        if P > 0 {
-            for (i, p) in scene.planes().iter().enumerate() {
-                sizes.add(p.anchor(eye).max_abs(), ObjectRef::Plane(i));
-            }
+    fn of_others(planes: &[Plane], lights: &[Light], eye: Vec3) -> Self {
+        let mut sizes = Self::EMPTY;
+        for (i, p) in planes.iter().enumerate() {
+            sizes.add(p.anchor(eye).max_abs(), ObjectRef::Plane(i));
         }
-        if L > 0 {
-            for (i, l) in scene.lights().iter().enumerate() {
-                if let Light::Point { position, .. } = *l {
-                    sizes.add((position - eye).max_abs(), ObjectRef::Light(i));
-                }
+        for (i, l) in lights.iter().enumerate() {
+            if let Light::Point { position, .. } = *l {
+                sizes.add((position - eye).max_abs(), ObjectRef::Light(i));
             }
-        }
-        for (i, s) in scene.spheres().iter().enumerate() {
-            sizes.add_sphere(i, s, eye, cone);
         }
         sizes
+    }
+
+    /// These sizes and the spheres', but for the spheres `cone` proves no ray meets.
+    fn with_spheres(mut self, spheres: &[Sphere], eye: Vec3, cone: Option<&ViewCone>) -> Self {
+        for (i, s) in spheres.iter().enumerate() {
+            self.add_sphere(i, s, eye, cone);
+        }
+        self
     }
 
     /// One sphere's size. Out of line: the loop over a scene type's few spheres is
@@ -262,8 +262,8 @@ impl Sizes {
 /// The frame's [`Scale`], once per frame from the scene, the camera and the method —
 /// never from the clip, so a band, a clipped and a whole render share it: the power of
 /// two nearest 1 that brings the size of every object the frame's rays can meet into
-/// `[2⁻⁴⁰, 2⁵⁰)` ([`Scale::for_range`]), and the cone outside which spheres were left
-/// out for it, if they were.
+/// `[2⁻⁴⁰, 2⁵⁰)` ([`Scale::for_range`]), and whether spheres outside the camera's
+/// [`ViewCone`] were left out for it.
 ///
 /// Every object counts, except where the frame's rays are primary rays through pixel
 /// centres alone (`cull`, a Lab #1 frame of one ray a pixel): there a sphere outside
@@ -272,23 +272,42 @@ impl Sizes {
 /// eye). Where no power of
 /// two fits, the frame is refused ([`FrameError::Magnitudes`]): a near object's
 /// squares would fall below `f32`'s normal numbers and draw a wrong picture.
-#[inline(never)]
-pub(crate) fn frame_scale<const N: usize, const L: usize, const P: usize, const D: usize, S: Stepper>(
+#[inline(always)]
+pub(crate) fn frame_scale<const N: usize, const L: usize, const P: usize, const D: usize>(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
+    step_err: f32,
     cull: bool,
-) -> Result<(Scale, Option<ViewCone>), FrameError> {
+) -> Result<(Scale, bool), FrameError> {
+    // Constant conditions: a scene type without planes or lights links neither loop.
+    let others = if P > 0 || L > 0 {
+        Sizes::of_others(scene.planes(), scene.lights(), camera.eye())
+    } else {
+        Sizes::EMPTY
+    };
+    decide(others, scene.spheres(), camera, step_err, cull)
+}
+
+/// [`frame_scale`] past the scene's type: one function for every scene and method.
+#[inline(never)]
+fn decide(
+    others: Sizes,
+    spheres: &[Sphere],
+    camera: &Camera,
+    step_err: f32,
+    cull: bool,
+) -> Result<(Scale, bool), FrameError> {
     let eye = camera.eye();
-    let sizes = Sizes::of(scene, eye, None);
-    match sizes.scale() {
-        Ok(scale) => Ok((scale, None)),
+    match others.with_spheres(spheres, eye, None).scale() {
+        Ok(scale) => Ok((scale, false)),
         Err(e) => {
-            let Some(cone) = ViewCone::new(camera, S::error_bound(camera)).filter(|_| cull) else {
+            let Some(cone) = ViewCone::new(camera, step_err).filter(|_| cull) else {
                 return Err(e);
             };
-            Sizes::of(scene, eye, Some(&cone))
+            others
+                .with_spheres(spheres, eye, Some(&cone))
                 .scale()
-                .map(|scale| (scale, Some(cone)))
+                .map(|scale| (scale, true))
         }
     }
 }

@@ -12,7 +12,7 @@ use crate::math::SqrtFn;
 use crate::method::intersect::{Auto, Robust, TestStrategy, AUTO_FD_CAPACITY};
 use crate::method::stepping::Stepper;
 use crate::scene::Scene;
-use crate::trace::frame::Frame;
+use crate::trace::frame::{frame_scale, Frame};
 use crate::trace::options::Options;
 use crate::trace::rows::Rows;
 use crate::trace::scanline::{Lab1Row, RowSink};
@@ -138,18 +138,23 @@ fn frame_of<
     // once, never moved (a by-value `Frame` holding the `Vec` would be copied on
     // return, doubling the render's stack).
     let mut spheres = Vec::new();
-    let frame = match Frame::<T, Lab1>::new::<N, M, L, P, D, S>(
+    // The frame's scale, from the scene, camera and method alone (never the clip).
+    let step_err = S::error_bound(camera);
+    let decided = match frame_scale::<N, L, P, D>(scene, camera, step_err, G::CENTER) {
+        Ok(decided) => decided,
+        Err(why) => return sink.refused(why),
+    };
+    let Some(frame) = Frame::<T, Lab1>::new::<N, M, L, P, D, S>(
         scene,
         camera,
         options,
         rows.clip(clip),
         offset,
         &mut spheres,
-        G::CENTER,
-    ) {
-        Ok(Some(frame)) => frame,
-        Ok(None) => return Ok(()), // nothing visible
-        Err(why) => return sink.refused(why),
+        step_err,
+        decided,
+    ) else {
+        return Ok(()); // nothing visible
     };
     let (w, background) = (camera.w(), frame.background);
     rows.draw_rows::<M, K, S, T, Q, Lab1, _>(&frame, sink, |_, _, _| Lab1Row { w, background })

@@ -43,7 +43,7 @@ use crate::scene::light::Light;
 use crate::scene::material::Material;
 use crate::scene::sphere::Sphere;
 use crate::scene::Scene;
-use crate::trace::frame::{Frame, FrameSphere};
+use crate::trace::frame::{frame_scale, Frame, FrameSphere};
 use crate::trace::options::{Options, SecondaryOrigin};
 use crate::trace::rows::{Fnv, Ident, Rows};
 use crate::trace::scanline::RowSink;
@@ -293,8 +293,6 @@ struct Ties<const N: usize, const L: usize, const P: usize> {
     exact: [bool; L],
     /// Some light's do: one test per shadow ray for a frame without ties.
     any: bool,
-    /// The scene's sphere count (the planes' object numbers follow).
-    n_spheres: usize,
 }
 
 impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
@@ -378,7 +376,6 @@ impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
             twins,
             exact,
             any,
-            n_spheres,
         }
     }
 
@@ -396,17 +393,6 @@ impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
             }
         }
         mask
-    }
-
-    /// The lowest-numbered object identical to `k` (`k` itself if none).
-    #[inline(always)]
-    fn twin(&self, k: Object) -> Object {
-        let twin = if k < self.n_spheres {
-            self.sphere_twin.get(k)
-        } else {
-            self.plane_twin.get(k - self.n_spheres)
-        };
-        twin.copied().unwrap_or(k)
     }
 }
 
@@ -634,18 +620,23 @@ fn render_with<
     let eye = camera.eye();
     let mut spheres = Vec::new();
     // Secondary rays can meet any object: none is culled for the frame's scale.
-    let frame = match Frame::<T, LitSphere>::new::<N, N, L, P, D, S>(
+    // The frame's scale, from the scene, camera and method alone (never the clip).
+    let step_err = S::error_bound(camera);
+    let decided = match frame_scale::<N, L, P, D>(scene, camera, step_err, false) {
+        Ok(decided) => decided,
+        Err(why) => return sink.refused(why),
+    };
+    let Some(frame) = Frame::<T, LitSphere>::new::<N, N, L, P, D, S>(
         scene,
         camera,
         options,
         rows.clip(clip),
         offset,
         &mut spheres,
-        false,
-    ) {
-        Ok(Some(frame)) => frame,
-        Ok(None) => return Ok(()), // nothing visible
-        Err(why) => return sink.refused(why),
+        step_err,
+        decided,
+    ) else {
+        return Ok(()); // nothing visible
     };
     let mut planes: Vec<FramePlane, P> = Vec::new();
     for p in scene.planes() {
@@ -666,7 +657,6 @@ fn render_with<
     // Shadow spans: per light and sphere, the image region where the sphere's shadow on
     // the first plane can fall — outside it a floor pixel does not test that sphere. A
     // scene without shadows casts no shadow ray, so none is built (they stay `ALL`).
-    let step_err = S::error_bound(camera);
     let mut shadow = [[Silhouette::ALL; N]; L];
     if let (true, true, Some(floor)) = (scene.settings().shadows, options.span_culling, planes.first()) {
         for (row, light) in shadow.iter_mut().zip(&lights) {
@@ -695,7 +685,7 @@ fn render_with<
         any_hit: options.shadow_any_hit,
         span_culling: options.span_culling,
         eps: eps * frame.scale.0,
-        dn_margin: f64::from(S::error_bound(camera)) + 8.0 * f64::from(UNIT_ROUNDOFF) * d_max,
+        dn_margin: f64::from(step_err) + 8.0 * f64::from(UNIT_ROUNDOFF) * d_max,
         i0: frame.i0,
         i1: frame.i1,
     };
@@ -825,41 +815,22 @@ impl<
     /// [`Self::closest`] in a frame with coincident objects ([`Ties`]): an object with
     /// a lower-numbered twin is left out (the twin computes the same bits and wins the
     /// tie), and the twin of the surface the ray leaves is that surface.
-    #[cold]
-    #[inline(never)]
+    #[inline(always)]
     fn closest_twins(&self, o: Vec3, dir: Vec3, from: Object, inside: bool) -> Option<(Object, f32)> {
+        closest_twins::<T, Q>(&self.objects(), o, dir, from, inside)
+    }
+
+    /// The frame's objects and ties as the exact paths read them.
+    #[inline(always)]
+    fn objects(&self) -> Objects<'_, T> {
         let f = self.f;
-        let ties = f.ties;
-        let from = ties.twin(from);
-        let a = dir.dot(dir);
-        let mut best = None;
-        let mut t_max = f32::INFINITY;
-        let n = f.spheres.len();
-        for k in 0..n + f.planes.len() {
-            if ties.twin(k) != k {
-                continue;
-            }
-            let t = match f.spheres.get(k) {
-                Some(s) if !O::TESTS_SELF && k == from => {
-                    if !inside {
-                        continue;
-                    }
-                    Some(far_root(&s.geom, o, dir, a)).filter(|&t| t > 0.0 && t < t_max)
-                }
-                Some(s) => T::ray::<Q>(&s.geom.seen_from(o), dir, a, t_max),
-                None if !O::TESTS_SELF && k == from => continue,
-                None => f
-                    .planes
-                    .get(k - n)
-                    .map(|plane| plane.t_from(o, dir))
-                    .filter(|&t| t > 0.0 && t < t_max),
-            };
-            if let Some(t) = t {
-                t_max = t;
-                best = Some((k, t));
-            }
+        Objects {
+            spheres: f.spheres,
+            planes: f.planes,
+            sphere_twin: &f.ties.sphere_twin,
+            plane_twin: &f.ties.plane_twin,
+            tests_self: O::TESTS_SELF,
         }
-        best
     }
 
     /// Whether object `k` crosses the open segment `o + s·l`, `0 < s < dist` (`l` unit);
@@ -966,47 +937,25 @@ impl<
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
-    #[cold]
-    #[inline(never)]
+    #[inline(always)]
     fn occluded_exact(&self, light: usize, o: Vec3, l: Vec3, dist: f32, from: Object, inside: bool) -> bool {
         let f = self.f;
-        let ties = f.ties;
-        let from = ties.twin(from);
-        let n = f.spheres.len();
         let (Some(on_sphere), Some(on_plane), Some(at)) = (
-            ties.on_sphere.get(light),
-            ties.on_plane.get(light),
+            f.ties.on_sphere.get(light),
+            f.ties.on_plane.get(light),
             f.lights.get(light).map(FrameLight::at),
         ) else {
             return false;
         };
-        for k in 0..n + f.planes.len() {
-            if ties.twin(k) != k {
-                continue;
-            }
-            let on = if k < n {
-                on_sphere.get(k)
-            } else {
-                on_plane.get(k - n)
-            };
-            let blocked = match (on.copied().unwrap_or(false), f.spheres.get(k)) {
-                // A plane through the lamp meets the segment only at its open end; the
-                // surface the ray leaves is never met again before the lamp on it.
-                (true, None) => false,
-                (true, Some(_)) if !O::TESTS_SELF && k == from => false,
-                // The lamp on the sphere: the line meets it at the lamp and 2σ before.
-                (true, Some(s)) => {
-                    let two_sigma = 2.0 * (at - s.geom.l).dot(l);
-                    two_sigma > 0.0 && two_sigma < dist
-                }
-                (false, _) => self.blocks(k, o, l, dist, from, inside),
-            };
-            if blocked {
-                return true;
-            }
-        }
-        false
+        occluded_exact::<T, Q>(
+            &self.objects(),
+            (on_sphere, on_plane, at),
+            o,
+            l,
+            dist,
+            from,
+            inside,
+        )
     }
 
     /// The surface at `p` of object `k`, met by a ray along `dir`.
@@ -1472,6 +1421,148 @@ fn plane_span<T: TestStrategy, const N: usize, const L: usize, const P: usize>(
     let lo = if lo > f64::from(i0) { lo as u32 } else { i0 };
     let hi = if hi < f64::from(i1) { hi as u32 } else { i1 };
     (lo < hi).then_some((lo, hi))
+}
+
+/// The frame's objects and their coincident twins, for the exact paths
+/// ([`closest_twins`], [`occluded_exact`]): slices and a flag, so that these rare
+/// paths are one function per sphere test and root, not one per scene type and exit.
+struct Objects<'a, T: TestStrategy> {
+    spheres: &'a [FrameSphere<T, LitSphere>],
+    planes: &'a [FramePlane],
+    /// Per sphere and plane: the lowest-numbered identical object ([`Ties`]).
+    sphere_twin: &'a [Object],
+    plane_twin: &'a [Object],
+    /// [`Exit::TESTS_SELF`].
+    tests_self: bool,
+}
+
+impl<T: TestStrategy> Objects<'_, T> {
+    /// The lowest-numbered object identical to `k` (`k` itself if none).
+    #[inline(always)]
+    fn twin(&self, k: Object) -> Object {
+        let n = self.spheres.len();
+        let twin = if k < n {
+            self.sphere_twin.get(k)
+        } else {
+            self.plane_twin.get(k - n)
+        };
+        twin.copied().unwrap_or(k)
+    }
+
+    /// [`LitRow::blocks`], the exit's flag read at run time.
+    #[inline(always)]
+    fn blocks<Q: SqrtFn>(&self, k: Object, o: Vec3, l: Vec3, dist: f32, from: Object, inside: bool) -> bool {
+        if let Some(s) = self.spheres.get(k) {
+            if !self.tests_self && k == from {
+                if !inside {
+                    return false;
+                }
+                let t = far_root(&s.geom, o, l, l.dot(l));
+                return t > 0.0 && t < dist;
+            }
+            T::ray::<Q>(&s.geom.seen_from(o), l, l.dot(l), dist).is_some()
+        } else if let Some(plane) = k.checked_sub(self.spheres.len()).and_then(|p| self.planes.get(p)) {
+            if !self.tests_self && k == from {
+                return false;
+            }
+            let t = plane.t_from(o, l);
+            t > 0.0 && t < dist
+        } else {
+            false
+        }
+    }
+}
+
+/// [`LitRow::closest`] in a frame with coincident objects ([`Ties`]): an object with
+/// a lower-numbered twin is left out (the twin computes the same bits and wins the
+/// tie), and the twin of the surface the ray leaves is that surface.
+#[cold]
+#[inline(never)]
+fn closest_twins<T: TestStrategy, Q: SqrtFn>(
+    objects: &Objects<'_, T>,
+    o: Vec3,
+    dir: Vec3,
+    from: Object,
+    inside: bool,
+) -> Option<(Object, f32)> {
+    let from = objects.twin(from);
+    let a = dir.dot(dir);
+    let mut best = None;
+    let mut t_max = f32::INFINITY;
+    let n = objects.spheres.len();
+    for k in 0..n + objects.planes.len() {
+        if objects.twin(k) != k {
+            continue;
+        }
+        let leaves = !objects.tests_self && k == from;
+        let t = match objects.spheres.get(k) {
+            Some(s) if leaves => {
+                if !inside {
+                    continue;
+                }
+                Some(far_root(&s.geom, o, dir, a)).filter(|&t| t > 0.0 && t < t_max)
+            }
+            Some(s) => T::ray::<Q>(&s.geom.seen_from(o), dir, a, t_max),
+            None if leaves => continue,
+            None => objects
+                .planes
+                .get(k - n)
+                .map(|plane| plane.t_from(o, dir))
+                .filter(|&t| t > 0.0 && t < t_max),
+        };
+        if let Some(t) = t {
+            t_max = t;
+            best = Some((k, t));
+        }
+    }
+    best
+}
+
+/// [`LitRow::occluded`] for a light whose shadow rays need the frame's ties: every
+/// object is tested (no shadow span, no cached occluder), an object with a
+/// lower-numbered twin is left out, the twin of the surface `o` lies on is that
+/// surface, and an object the lamp (at `at`, on the objects flagged in `on`) lies on is
+/// decided by the side the segment reaches the lamp from ([`Ties`]).
+#[cold]
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn occluded_exact<T: TestStrategy, Q: SqrtFn>(
+    objects: &Objects<'_, T>,
+    (on_sphere, on_plane, at): (&[bool], &[bool], Vec3),
+    o: Vec3,
+    l: Vec3,
+    dist: f32,
+    from: Object,
+    inside: bool,
+) -> bool {
+    let from = objects.twin(from);
+    let n = objects.spheres.len();
+    for k in 0..n + objects.planes.len() {
+        if objects.twin(k) != k {
+            continue;
+        }
+        let on = if k < n {
+            on_sphere.get(k)
+        } else {
+            on_plane.get(k - n)
+        };
+        let blocked = match (on.copied().unwrap_or(false), objects.spheres.get(k)) {
+            // A plane through the lamp meets the segment only at its open end; the
+            // surface the ray leaves is never met again before the lamp on it.
+            (true, None) => false,
+            (true, Some(_)) if !objects.tests_self && k == from => false,
+            // The lamp on the sphere: the line meets it at the lamp and 2σ before.
+            (true, Some(s)) => {
+                let two_sigma = 2.0 * (at - s.geom.l).dot(l);
+                two_sigma > 0.0 && two_sigma < dist
+            }
+            (false, _) => objects.blocks::<Q>(k, o, l, dist, from, inside),
+        };
+        if blocked {
+            return true;
+        }
+    }
+    false
 }
 
 /// Where on the image the shadow that sphere `g` casts on `floor` under `light` can be

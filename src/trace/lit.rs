@@ -276,8 +276,9 @@ const ON_SURFACE: f64 = 1.0 / 65_536.0;
 ///   the other as the surface it leaves (the convex exit): no ray sees one twin from
 ///   the other at `t ≈ 0`.
 ///
-/// Scenes without either tie pay one comparison per shadow ray (the light's `exact`
-/// flag) and one per reflected ray.
+/// A frame without either tie draws the pixels it would without this rule: its rows
+/// call the plain shadow test (through the pointer each row picks,
+/// [`LitRow::shadow`]) and its reflected rays test one flag.
 struct Ties<const N: usize, const L: usize, const P: usize> {
     /// Per light (the frame's numbering) and sphere: the lamp lies on it.
     on_sphere: [[bool; N]; L],

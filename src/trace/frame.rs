@@ -220,8 +220,8 @@ impl Sizes {
         self
     }
 
-    /// One sphere's size. Out of line: the loop over a scene type's few spheres is
-    /// unrolled, and this once per sphere would be as many copies.
+    /// One sphere's size, unless `cone` proves no ray meets it. Out of line: the
+    /// frame's set-up calls it from two loops.
     #[inline(never)]
     fn add_sphere(&mut self, i: usize, s: &Sphere, eye: Vec3, cone: Option<&ViewCone>) {
         let l = s.center - eye;
@@ -269,9 +269,9 @@ impl Sizes {
 /// centres alone (`cull`, a Lab #1 frame of one ray a pixel): there a sphere outside
 /// the cone of the image's rays ([`ViewCone`]) is met by no ray, and is left out when
 /// the others need a range it cannot share (a sphere 10³⁰ away beside or behind the
-/// eye). Where no power of
-/// two fits, the frame is refused ([`FrameError::Magnitudes`]): a near object's
-/// squares would fall below `f32`'s normal numbers and draw a wrong picture.
+/// eye). Where no power of two fits, the frame is refused
+/// ([`FrameError::Magnitudes`]): a near object's squares would fall below `f32`'s
+/// normal numbers and draw a wrong picture.
 #[inline(always)]
 pub(crate) fn frame_scale<const N: usize, const L: usize, const P: usize, const D: usize>(
     scene: &Scene<N, L, P, D>,

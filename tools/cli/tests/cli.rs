@@ -952,8 +952,11 @@ fn memory_does_not_grow_with_the_height() {
     assert_rendered(&tall);
     let (short, tall) = (peak_mb(&short), peak_mb(&tall));
     let extra_rows_mb = 8192.0 * 448.0 * 3.0 / 1e6;
+    // A quarter of the extra rows: the allocator's own peaks move by up to 1.5 MB from
+    // run to run (measured: 11.0 against 12.5 MB on a loaded machine), far below the
+    // 11 MB a whole-image buffer would add.
     assert!(
-        tall - short < extra_rows_mb / 8.0,
+        tall - short < extra_rows_mb / 4.0,
         "peak {short} MB at 8192x64, {tall} MB at 8192x512"
     );
 }

@@ -312,6 +312,8 @@ pub enum SceneError {
     Plane(PlaneError),
     /// The settings are invalid.
     Settings(SettingsError),
+    /// No such object to replace: the index is not below the count of its kind.
+    NoSuchObject(ObjectRef),
 }
 
 impl fmt::Display for SceneError {
@@ -333,6 +335,7 @@ impl fmt::Display for SceneError {
             SceneError::Light(e) => fmt::Display::fmt(e, f),
             SceneError::Plane(e) => fmt::Display::fmt(e, f),
             SceneError::Settings(e) => fmt::Display::fmt(e, f),
+            SceneError::NoSuchObject(object) => write!(f, "the scene has no {object}"),
         }
     }
 }

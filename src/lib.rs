@@ -141,6 +141,7 @@ extern crate std;
 // (`.ci/module-cycles` checks it, and that no two files import each other in a circle).
 mod camera; // the pin-hole camera; each sphere's silhouette on the image
 mod error; // the typed errors of every constructor
+pub mod incremental; // frames that re-trace and re-send only what changed
 mod integer; // the integer kernel for chips without an FPU
 pub mod math; // square roots, `Vec3`, the limits every bound is stated in
 mod method; // the method vocabulary, its one dispatch, stepping, sphere tests, single-ray queries
@@ -160,6 +161,7 @@ pub use error::{
     BandError, CameraError, CameraParam, FrameError, IntegerError, LightError, MaterialError, ObjectRef,
     ParseMethodError, PlaneError, SceneError, SettingsError, SphereError,
 };
+pub use incremental::{FrameStats, Incremental};
 pub use math::limits::{MAX_FOV, MAX_RESOLUTION, MIN_PIXEL_SIZE, MIN_UP_ANGLE};
 pub use math::vec3::Vec3;
 pub use method::intersect::AUTO_FD_CAPACITY;

@@ -280,7 +280,7 @@ impl<const N: usize, C: PixelColor + From<Rgb888>, const L: usize, const P: usiz
 
     /// `rows` of the image as a clip (every column, image coordinates) and the sink
     /// that writes them into `buf`, or why they cannot be drawn.
-    fn band<'b>(
+    pub(crate) fn band<'b>(
         &self,
         rows: core::ops::Range<u32>,
         buf: &'b mut [C],
@@ -474,6 +474,21 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
         dispatch(self.method, Check(self))
     }
 
+    /// The scene drawn.
+    pub(crate) const fn scene(&self) -> &Scene<N, L, P, D> {
+        self.scene
+    }
+
+    /// The camera it is seen through.
+    pub(crate) const fn camera(&self) -> &Camera {
+        self.camera
+    }
+
+    /// Where the image's upper-left pixel sits on the target.
+    pub(crate) const fn offset(&self) -> Point {
+        self.offset
+    }
+
     /// Whether the integer kernel can draw this kind of render at all: a scene without
     /// lights, planes or mirrors, one ray a pixel (its rule then decides per frame).
     fn integer_kind(&self) -> bool {
@@ -483,7 +498,12 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
     /// The frame through the one dispatch: the part of the image at `offset` that
     /// `clip` shows, into `sink`.
     #[inline(always)]
-    fn render<K: RowSink>(&self, clip: Rectangle, offset: Point, sink: &mut K) -> Result<(), K::Error> {
+    pub(crate) fn render<K: RowSink>(
+        &self,
+        clip: Rectangle,
+        offset: Point,
+        sink: &mut K,
+    ) -> Result<(), K::Error> {
         dispatch(
             self.method,
             Frame {

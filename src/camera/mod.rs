@@ -79,6 +79,45 @@ impl CameraParams {
         self
     }
 
+    /// The same parameters with the eye moved to `eye`, still looking at `look_at`: a
+    /// dolly, a crane or a walk around the scene.
+    #[must_use]
+    pub const fn with_eye(mut self, eye: Vec3) -> Self {
+        self.eye = eye;
+        self
+    }
+
+    /// The same parameters with the eye turned by `angle` radians about the line
+    /// through `look_at` along `up` (counter-clockwise seen from above): the camera
+    /// orbits the point it looks at, keeping its height and distance. Two sines and
+    /// a handful of products (`libm`, so every target computes the same bits); cheap
+    /// enough for every frame on a chip without an FPU. A non-finite angle, or an `up`
+    /// that is zero, makes a non-finite eye, which [`build`](Self::build) refuses.
+    ///
+    /// ```
+    /// use embedded_graphics::geometry::Size;
+    /// use embedded_raytracer::{CameraParams, Vec3};
+    ///
+    /// let params = CameraParams::new(
+    ///     Vec3::new(0.0, 1.0, 5.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), 1.0, Size::new(64, 64),
+    /// );
+    /// // A quarter turn: the eye goes from +z to +x, at the same height.
+    /// let eye = params.orbited(core::f32::consts::FRAC_PI_2).eye;
+    /// assert!((eye.x - 5.0).abs() < 1e-5 && eye.y == 1.0 && eye.z.abs() < 1e-5);
+    /// ```
+    #[must_use]
+    pub fn orbited(self, angle: f32) -> Self {
+        // Rodrigues' rotation of r = eye − look_at about the unit axis k:
+        // r·cos + (k×r)·sin + k(k·r)(1 − cos).
+        let k = self.up * (1.0 / math::sqrt_exact(self.up.dot(self.up)));
+        let r = self.eye - self.look_at;
+        let (s, c) = (libm::sinf(angle), libm::cosf(angle));
+        let along = k * k.dot(r);
+        let across = r - along;
+        let rotated = along + across * c + k.cross(r) * s;
+        self.with_eye(self.look_at + rotated)
+    }
+
     /// Validates the parameters and computes the seed's camera set-up: the one way a
     /// [`Camera`] is made ([`Camera::new`] is this with square pixels).
     ///

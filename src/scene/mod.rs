@@ -10,7 +10,7 @@ pub mod sphere;
 use embedded_graphics::pixelcolor::Rgb888;
 use heapless::Vec;
 
-use crate::error::{SceneError, SettingsError};
+use crate::error::{ObjectRef, SceneError, SettingsError};
 use crate::scene::light::Light;
 use crate::scene::material::Material;
 use crate::scene::plane::Plane;
@@ -246,6 +246,55 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Scene<N, L,
         self.planes
             .push(plane)
             .map_err(|_| SceneError::TooManyPlanes { capacity: P })
+    }
+
+    /// Replaces sphere `index` after the checks of [`push`](Self::push): what an
+    /// animation calls every frame to move, resize or recolour a sphere. On an error the
+    /// scene is as it was.
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::Rgb888;
+    /// use embedded_raytracer::{ObjectRef, Scene, SceneError, Sphere, Vec3};
+    ///
+    /// let ball = Sphere::new(Vec3::new(0.0, 1.0, 0.0), 0.5, Rgb888::new(255, 64, 64));
+    /// let mut scene: Scene<1> = Scene::from_array([ball], Rgb888::new(0, 0, 0));
+    /// scene.set_sphere(0, Sphere { center: Vec3::new(0.0, 0.6, 0.0), ..ball })?;
+    /// assert_eq!(scene.spheres()[0].center.y, 0.6);
+    /// assert_eq!(scene.set_sphere(1, ball), Err(SceneError::NoSuchObject(ObjectRef::Sphere(1))));
+    /// # Ok::<(), SceneError>(())
+    /// ```
+    pub fn set_sphere(&mut self, index: usize, sphere: Sphere) -> Result<(), SceneError> {
+        let sphere = sphere.check()?;
+        Self::check_mirror(&sphere.material)?;
+        let slot = self
+            .spheres
+            .get_mut(index)
+            .ok_or(SceneError::NoSuchObject(ObjectRef::Sphere(index)))?;
+        *slot = sphere;
+        Ok(())
+    }
+
+    /// Replaces light `index` after the checks of [`push_light`](Self::push_light).
+    pub fn set_light(&mut self, index: usize, light: Light) -> Result<(), SceneError> {
+        let light = light.check()?;
+        let slot = self
+            .lights
+            .get_mut(index)
+            .ok_or(SceneError::NoSuchObject(ObjectRef::Light(index)))?;
+        *slot = light;
+        Ok(())
+    }
+
+    /// Replaces plane `index` after the checks of [`push_plane`](Self::push_plane).
+    pub fn set_plane(&mut self, index: usize, plane: Plane) -> Result<(), SceneError> {
+        let plane = plane.check()?;
+        Self::check_mirror(&plane.material)?;
+        let slot = self
+            .planes
+            .get_mut(index)
+            .ok_or(SceneError::NoSuchObject(ObjectRef::Plane(index)))?;
+        *slot = plane;
+        Ok(())
     }
 
     /// Sets the settings after checking them ([`Settings::check`], and

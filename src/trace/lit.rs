@@ -279,6 +279,7 @@ const ON_SURFACE: f64 = 1.0 / 65_536.0;
 /// A frame without either tie draws the pixels it would without this rule: its rows
 /// call the plain shadow test (through the pointer each row picks,
 /// [`LitRow::shadow`]) and its reflected rays test one flag.
+#[derive(PartialEq)]
 struct Ties<const N: usize, const L: usize, const P: usize> {
     /// Per light (the frame's numbering) and sphere: the lamp lies on it.
     on_sphere: [[bool; N]; L],
@@ -1653,6 +1654,42 @@ fn shadow_silhouette(
     }
     let centre = Vec3::new(centre[0] as f32, centre[1] as f32, centre[2] as f32);
     Silhouette::new(centre, radius as f32, camera, Margin::Quadratic, step_err)
+}
+
+/// The frame-wide part of a features frame that a moved sphere can change besides its
+/// own pixels: its ties (a lamp lying on a surface, coincident objects; see [`Ties`]),
+/// which choose every row's shadow test. Equal for two scenes seen from `eye`: every
+/// row takes the same path in both.
+pub(crate) fn same_ties<const N: usize, const L: usize, const P: usize, const D: usize>(
+    a: &Scene<N, L, P, D>,
+    b: &Scene<N, L, P, D>,
+    eye: Vec3,
+) -> bool {
+    Ties::new(a, eye) == Ties::new(b, eye)
+}
+
+/// Where on the image the shadow that `sphere` casts on the scene's first plane under
+/// each of its lights can be seen, as the features frame culls its shadow rays with it
+/// ([`shadow_silhouette`]), in the frame's units (`scale`): one silhouette per usable
+/// light, passed to `f`. Nothing for a scene without a plane.
+pub(crate) fn shadow_regions<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    sphere: &Sphere,
+    camera: &Camera,
+    (scale, step_err): (Scale, f32),
+    mut f: impl FnMut(Silhouette),
+) {
+    let eye = camera.eye();
+    let Some(plane) = scene.planes().first() else {
+        return;
+    };
+    let floor = FramePlane::new(plane, eye, scale).unwrap_or(FramePlane::NEVER);
+    let geom = SphereGeom::new(sphere.center, sphere.radius, eye, scale);
+    for l in scene.lights() {
+        if let Some(light) = FrameLight::new(l, eye, scale) {
+            f(shadow_silhouette(&light, &geom, &floor, camera, step_err));
+        }
+    }
 }
 
 /// `x^shininess` for `x ∈ (0, 1]`: by repeated squaring when the exponent is a whole

@@ -7,6 +7,7 @@ mod band;
 mod camera;
 mod clip;
 mod common;
+mod incremental;
 mod intersect;
 mod lit;
 mod render;

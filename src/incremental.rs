@@ -1,0 +1,966 @@
+//! Frames that re-trace and re-send only what changed: [`Incremental`] remembers what the
+//! display shows (the scene, camera and render settings of the last frame drawn, never
+//! its pixels) and draws the next frame by tracing only the pixels that can differ from
+//! it and sending only those — the display then shows the next frame's full render, bit
+//! for bit.
+//!
+//! ## The rule: which pixels can differ
+//!
+//! A pixel is a function of the scene, the camera, the method and the pixel alone, and
+//! never of the clip it is drawn in; and a sphere takes part in a pixel only inside its
+//! silhouette, the ellipse the frame culls with (enlarged by the test's and the
+//! stepping's proven margins: outside it the kernel never tests that sphere). So:
+//!
+//! 1. **Frame-wide state** equal in both frames, else the whole frame is drawn: the
+//!    camera, the method, sampling, options and offset, the target's bounding box, the
+//!    background and settings, every light and plane, the number of spheres, the
+//!    frame's [`Scale`] and whether it left far spheres out, the features frame's ties
+//!    (a lamp on a surface, coincident objects), and the arithmetic (the integer
+//!    kernel's own per-frame rule and quantisation are not compared: a frame it draws
+//!    is drawn whole when anything changed).
+//! 2. **Each sphere whose bits changed** (`-0.0` and `0.0` differ): its old and its new
+//!    silhouette. With lights and shadows, also the old and new shadow silhouettes it
+//!    casts on the first plane under each light (as the features frame culls its shadow
+//!    rays), and the silhouettes of the other spheres (on which its shadow can fall);
+//!    a second plane (whose shadow rays are not culled) draws the whole frame. With a
+//!    reflection depth, the silhouettes of every mirror sphere (a mirror can show
+//!    anything); a mirror plane draws the whole frame.
+//! 3. **Sampling** widens each silhouette by its footprint: `Grid(n)`'s sub-pixel rays
+//!    lie within half a pixel of the centre (the silhouette's reach over the pixel's
+//!    rows, [`band_reach`](crate::camera::span::Silhouette::band_reach), and half a
+//!    column), and `Adaptive(n)` decides a pixel from its neighbours' samples too (two
+//!    pixels more each way).
+//! 4. **What the display lost** ([`Incremental::invalidate`],
+//!    [`Incremental::invalidate_area`]).
+//!
+//! Outside the union, every pixel is computed from the same inputs in both frames by the
+//! same code: it is the same. Inside it, the pixels are traced by the render itself,
+//! clipped to rectangles around the regions: a clipped render's pixels are the whole
+//! render's. The regions are cut into runs per row; runs of a row closer than
+//! [`MERGE_GAP`] pixels are sent as one.
+//!
+//! More than [`MAX_REGIONS`] regions, or one that is not a bounded ellipse (culling off,
+//! a sphere around the eye), draw the whole frame: slower, never wrong.
+
+use core::marker::PhantomData;
+
+use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use heapless::Vec;
+
+use crate::camera::span::{Margin, Silhouette, ViewCone};
+use crate::camera::{Camera, CameraParams};
+use crate::error::{BandError, FrameError};
+use crate::math::vec3::Vec3;
+use crate::math::SqrtFn;
+use crate::method::dispatch::{dispatch, Visit};
+use crate::method::intersect::{Scale, SphereGeom, TestStrategy};
+use crate::method::stepping::Stepper;
+use crate::method::{Arithmetic, Method};
+use crate::render::Render;
+use crate::sampling::Sampling;
+use crate::scene::light::Light;
+use crate::scene::material::Material;
+use crate::scene::plane::Plane;
+use crate::scene::sphere::Sphere;
+use crate::scene::{Scene, Settings};
+use crate::trace::lit;
+use crate::trace::options::{Options, SecondaryOrigin};
+use crate::trace::scanline::{ColorRuns, PixelRow, RowSink};
+
+/// At most this many regions (silhouettes and rectangles) a frame re-traces; more draw
+/// the whole frame. It bounds the plan's stack: about 40 bytes a region.
+pub const MAX_REGIONS: usize = 12;
+
+/// Two runs of a row at most this many pixels apart are sent as one. A display
+/// controller of the ST7789/ILI9341 family opens a window with 11 bytes (column and row
+/// address commands with four bytes each, the memory-write command); re-sending a gap
+/// of `g` unchanged `Rgb565` pixels costs `2g` bytes: up to 5 pixels, less than a
+/// second window.
+pub const MERGE_GAP: u32 = 5;
+
+/// What one incremental frame cost: pixels traced (the area of the rectangles the render
+/// was clipped to, where the kernel traced every pixel its spans reach), pixels sent and
+/// the windows (runs) they were sent in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct FrameStats {
+    /// The whole frame was drawn (the first frame, a frame-wide change, or too many
+    /// regions).
+    pub full: bool,
+    /// Pixels in the rectangles the render traced.
+    pub traced: u32,
+    /// Pixels sent to the display.
+    pub sent: u32,
+    /// Runs (one `fill_contiguous` each) they were sent in.
+    pub windows: u32,
+    /// The frame could not be drawn exactly ([`Render::check`]): nothing was sent, and
+    /// the next frame is drawn whole.
+    pub refused: Option<FrameError>,
+}
+
+/// What the display shows, remembered for the next frame: the scene, camera and render
+/// settings of the last frame drawn. Its size is the scene's
+/// (`size_of::<Scene<N, L, P, D>>()`: 44 bytes a sphere of capacity `N`, 20 a light, 60
+/// a plane) and about 100 bytes more; it holds no pixel.
+///
+/// ```
+/// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::{Rgb565, Rgb888}, prelude::*};
+/// use embedded_raytracer::{Camera, Incremental, Render, Scene, Sphere, Vec3};
+///
+/// let ball = Sphere::new(Vec3::new(-1.0, 0.0, 0.0), 0.5, Rgb888::new(255, 64, 64));
+/// let mut scene: Scene<2> = Scene::from_array(
+///     [ball, Sphere::new(Vec3::new(1.0, 0.0, 0.0), 0.5, Rgb888::new(64, 255, 64))],
+///     Rgb888::new(0, 0, 0),
+/// );
+/// let camera = Camera::new(Vec3::new(0.0, 0.0, 6.0), Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0),
+///     0.6, Size::new(64, 64))?;
+/// let mut display = MockDisplay::<Rgb565>::new();
+/// display.set_allow_overdraw(true);
+/// let mut shown = Incremental::new();
+///
+/// // The first frame is drawn whole.
+/// let first = shown.draw(&Render::new(&scene, &camera), &mut display)?;
+/// assert!(first.full && first.sent == 64 * 64);
+///
+/// // The one-frame loop: move what moves, draw what changed.
+/// for frame in 1..4 {
+///     scene.set_sphere(0, Sphere { center: Vec3::new(-1.0, 0.1 * frame as f32, 0.0), ..ball })?;
+///     let stats = shown.draw(&Render::new(&scene, &camera), &mut display)?;
+///     assert!(!stats.full && stats.sent < 64 * 64 / 4);
+/// }
+/// // Nothing moved: nothing is sent.
+/// assert_eq!(shown.draw(&Render::new(&scene, &camera), &mut display)?.sent, 0);
+///
+/// // The display shows the last frame's full render, bit for bit.
+/// let mut full = MockDisplay::<Rgb565>::new();
+/// Render::new(&scene, &camera).draw(&mut full)?;
+/// display.assert_eq(&full);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Incremental<const N: usize, const L: usize = 0, const P: usize = 0, const D: usize = 0> {
+    shown: Option<Shown<N, L, P, D>>,
+    /// A part of the image (image coordinates) the display no longer shows.
+    stale: Option<Rectangle>,
+}
+
+#[derive(Clone, Debug)]
+struct Shown<const N: usize, const L: usize, const P: usize, const D: usize> {
+    scene: Scene<N, L, P, D>,
+    params: CameraParams,
+    method: Method,
+    sampling: Sampling,
+    options: Options,
+    offset: Point,
+    /// The target's bounding box (for bands: the image).
+    target: Rectangle,
+}
+
+impl<const N: usize, const L: usize, const P: usize, const D: usize> Default for Incremental<N, L, P, D> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental<N, L, P, D> {
+    /// Nothing known about the display: the first frame is drawn whole.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self {
+            shown: None,
+            stale: None,
+        }
+    }
+
+    /// The display no longer shows the last frame (it was cleared, or a draw returned
+    /// an error): the next frame is drawn whole.
+    pub fn invalidate(&mut self) {
+        self.shown = None;
+        self.stale = None;
+    }
+
+    /// The display no longer shows the last frame in `area` (target coordinates: an
+    /// overlay such as a frame-rate counter or a message was drawn over it): the next
+    /// frame redraws that rectangle too.
+    pub fn invalidate_area(&mut self, area: Rectangle) {
+        let Some(shown) = &self.shown else {
+            return;
+        };
+        let image = Rectangle::new(shown.offset, shown.params.size);
+        let area = area.intersection(&image);
+        if area.is_zero_sized() {
+            return;
+        }
+        let area = Rectangle::new(area.top_left - shown.offset, area.size);
+        self.stale = Some(match self.stale {
+            None => area,
+            Some(old) => bounding(old, area),
+        });
+    }
+
+    /// Draws `render`'s frame onto `target`, which shows the last frame drawn through
+    /// this `Incremental`: traces the pixels that can differ (see the [module
+    /// rule](crate::incremental)) and sends each changed run of a row as its own
+    /// `fill_contiguous`, so an SPI display driver sends only that window. Afterwards
+    /// the target shows `render`'s full frame, bit for bit.
+    ///
+    /// # Errors
+    ///
+    /// The target's. The display's state is then unknown: the next frame is drawn
+    /// whole.
+    pub fn draw<C, Tg>(
+        &mut self,
+        render: &Render<'_, N, C, L, P, D>,
+        target: &mut Tg,
+    ) -> Result<FrameStats, Tg::Error>
+    where
+        C: PixelColor + From<Rgb888>,
+        Tg: DrawTarget<Color = C>,
+    {
+        let bbox = target.bounding_box();
+        let plan = self.plan(render, bbox);
+        // What the display shows if the draw fails is unknown: forget it until done.
+        let shown = self.shown.take();
+        let result = plan.draw(render, target);
+        match (&result, plan.refused) {
+            (Ok(_), None) => self.remember(render, bbox),
+            _ => drop(shown),
+        }
+        result
+    }
+
+    /// Plans the next frame for a caller that sends bands itself (DMA): the returned
+    /// [`Changes`] says which runs of each row changed ([`Changes::runs`]) and traces
+    /// them into a band buffer ([`Changes::draw_band`]). The image is at the origin
+    /// (bands have no offset). The frame is taken as shown from now on: a caller that
+    /// fails to send it calls [`Incremental::invalidate`].
+    pub fn update<C>(&mut self, render: &Render<'_, N, C, L, P, D>) -> Changes
+    where
+        C: PixelColor + From<Rgb888>,
+    {
+        let image = Rectangle::new(Point::zero(), render.camera().size());
+        let plan = self.plan_at(render, image, Point::zero());
+        if plan.refused.is_none() {
+            self.remember_at(render, image, Point::zero());
+        } else {
+            self.invalidate();
+        }
+        plan
+    }
+
+    fn remember<C>(&mut self, render: &Render<'_, N, C, L, P, D>, target: Rectangle) {
+        self.remember_at(render, target, render.offset());
+    }
+
+    fn remember_at<C>(&mut self, render: &Render<'_, N, C, L, P, D>, target: Rectangle, offset: Point) {
+        self.shown = Some(Shown {
+            scene: render.scene().clone(),
+            params: *render.camera().params(),
+            method: render.method(),
+            sampling: render.sampling(),
+            options: render.options(),
+            offset,
+            target,
+        });
+        self.stale = None;
+    }
+
+    fn plan<C>(&self, render: &Render<'_, N, C, L, P, D>, target: Rectangle) -> Changes {
+        self.plan_at(render, target, render.offset())
+    }
+
+    /// The rule (module docs), once per frame.
+    fn plan_at<C>(&self, render: &Render<'_, N, C, L, P, D>, target: Rectangle, offset: Point) -> Changes {
+        let camera = render.camera();
+        let size = camera.size();
+        let scene = render.scene();
+        let new = dispatch(
+            render.method(),
+            Probe {
+                scene,
+                camera,
+                sampling: render.sampling(),
+            },
+        );
+        let (scale, culled, margin, step_err) = match new {
+            Ok(p) => p,
+            Err(why) => return Changes::refusal(size, why),
+        };
+        let full = Changes::full(size);
+        let Some(shown) = &self.shown else {
+            return full;
+        };
+        if !(same_params(&shown.params, camera.params())
+            && shown.method == render.method()
+            && shown.sampling == render.sampling()
+            && same_options(render.options(), shown.options)
+            && shown.offset == offset
+            && shown.target == target
+            && same_frame_wide(&shown.scene, scene))
+        {
+            return full;
+        }
+        let old = dispatch(
+            render.method(),
+            Probe {
+                scene: &shown.scene,
+                camera,
+                sampling: render.sampling(),
+            },
+        );
+        match old {
+            Ok((s, c, _, _)) if s.0.to_bits() == scale.0.to_bits() && c == culled => {}
+            _ => return full,
+        }
+        let features = Scene::<N, L, P, D>::FEATURES;
+        let changed = |k: usize| match (shown.scene.spheres().get(k), scene.spheres().get(k)) {
+            (Some(a), Some(b)) => !same_sphere(a, b),
+            _ => true,
+        };
+        let any_changed = (0..scene.spheres().len()).any(changed);
+        if any_changed {
+            if render.method().arithmetic == Arithmetic::Integer
+                && !features
+                && render.sampling() == Sampling::Center
+            {
+                // The integer kernel's quantisation is frame-wide and not compared.
+                return full;
+            }
+            if features && !lit::same_ties(&shown.scene, scene, camera.eye()) {
+                return full;
+            }
+        }
+        let pad = match render.sampling() {
+            Sampling::Center => 0,
+            Sampling::Grid(_) => 1,
+            Sampling::Adaptive(_) => 3,
+        };
+        let shadows = features && L > 0 && scene.settings().shadows;
+        let mirrors = features && scene.max_depth() > 0;
+        if any_changed
+            && ((shadows && P > 1) || (mirrors && scene.planes().iter().any(|p| p.material.reflect != 0.0)))
+        {
+            return full;
+        }
+        let cone = if culled {
+            ViewCone::new(camera, step_err)
+        } else {
+            None
+        };
+        let mut plan = Changes::empty(size);
+        let frame = Sil {
+            camera,
+            scale,
+            margin,
+            step_err,
+            cone: cone.as_ref(),
+            span_culling: render.options().span_culling,
+        };
+        let mut ok = true;
+        let add_sphere = |plan: &mut Changes, s: &Sphere| plan.push(Region::silhouette(frame.of(s), pad));
+        for (k, new_s) in scene.spheres().iter().enumerate() {
+            if !changed(k) {
+                continue;
+            }
+            ok &= add_sphere(&mut plan, new_s);
+            if let Some(old_s) = shown.scene.spheres().get(k) {
+                ok &= add_sphere(&mut plan, old_s);
+                if shadows {
+                    for s in [old_s, new_s] {
+                        lit::shadow_regions(scene, s, camera, (scale, step_err), |sil| {
+                            ok &= plan.push(Region::silhouette(sil, pad));
+                        });
+                    }
+                }
+            }
+        }
+        if any_changed {
+            // The surfaces a moved sphere's shadow can fall on, and the mirrors that can
+            // show it: each unchanged sphere once.
+            for (k, s) in scene.spheres().iter().enumerate() {
+                if !changed(k) && (shadows || (mirrors && s.material.reflect != 0.0)) {
+                    ok &= add_sphere(&mut plan, s);
+                }
+            }
+        }
+        if let Some(stale) = self.stale {
+            ok &= plan.push(Some(Region::Rect(stale)));
+        }
+        if !ok {
+            return full;
+        }
+        plan.merge();
+        plan
+    }
+}
+
+/// The frame-wide inputs a probe of the method's strategy types reports: the frame's
+/// scale and whether it left far spheres out, the test's margin and the stepping's
+/// error bound (what each silhouette is enlarged by).
+type Probed = (Scale, bool, Margin, f32);
+
+/// The frame's scale and the silhouettes' margins, as the render decides them.
+struct Probe<'a, const N: usize, const L: usize, const P: usize, const D: usize> {
+    scene: &'a Scene<N, L, P, D>,
+    camera: &'a Camera,
+    sampling: Sampling,
+}
+
+impl<const N: usize, const L: usize, const P: usize, const D: usize> Visit for Probe<'_, N, L, P, D> {
+    type Output = Result<Probed, FrameError>;
+    fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Self::Output {
+        // Only a Lab #1 frame of one ray a pixel culls for its scale (as `lab1.rs` does).
+        let cull = !Scene::<N, L, P, D>::FEATURES && self.sampling == Sampling::Center;
+        let step_err = S::error_bound(self.camera);
+        crate::trace::frame::frame_scale::<N, L, P, D>(self.scene, self.camera, step_err, cull)
+            .map(|(scale, culled)| (scale, culled, T::MARGIN, step_err))
+    }
+}
+
+/// A sphere's silhouette as the frame builds it (`frame.rs`): in the frame's units,
+/// with the test's margin and the stepping's error bound; none where the frame's cone
+/// left the sphere out.
+struct Sil<'a> {
+    camera: &'a Camera,
+    scale: Scale,
+    margin: Margin,
+    step_err: f32,
+    cone: Option<&'a ViewCone>,
+    span_culling: bool,
+}
+
+impl Sil<'_> {
+    fn of(&self, s: &Sphere) -> Silhouette {
+        let eye = self.camera.eye();
+        if self.cone.is_some_and(|c| c.misses(s.center - eye, s.radius)) {
+            return Silhouette::NONE;
+        }
+        if !self.span_culling {
+            return Silhouette::ALL;
+        }
+        let geom = SphereGeom::new(s.center, s.radius, eye, self.scale);
+        Silhouette::new(
+            geom.l,
+            s.radius * self.scale.0,
+            self.camera,
+            self.margin,
+            self.step_err,
+        )
+    }
+}
+
+/// One region of the image that can have changed.
+#[derive(Clone, Copy, Debug)]
+enum Region {
+    /// A silhouette widened by `pad` pixels each way, its reach constants, and the rows
+    /// it covers.
+    Ellipse {
+        sil: Silhouette,
+        reach: (f32, f32),
+        pad: u32,
+    },
+    /// A rectangle of the image.
+    Rect(Rectangle),
+}
+
+impl Region {
+    fn silhouette(sil: Silhouette, pad: u32) -> Option<Self> {
+        if sil.is_all() {
+            return None;
+        }
+        Some(Region::Ellipse {
+            sil,
+            reach: sil.reach_consts(),
+            pad,
+        })
+    }
+
+    /// Its columns `[lo, hi)` in row `j` of an image `width` wide.
+    fn span(&self, j: u32, width: u32) -> Option<(u32, u32)> {
+        match *self {
+            Region::Rect(r) => {
+                let (y0, y1) = (r.top_left.y as u32, r.top_left.y as u32 + r.size.height);
+                (y0 <= j && j < y1).then_some((r.top_left.x as u32, r.top_left.x as u32 + r.size.width))
+            }
+            Region::Ellipse { sil, pad: 0, .. } => sil.row_span(j, 0, width),
+            Region::Ellipse { sil, reach, pad } => {
+                // A pixel's rays (and, with `pad`, its neighbours') lie within
+                // `pad + ½` of its centre: the silhouette's reach over those rows,
+                // widened as much in columns.
+                let h = pad as f32 + 0.5;
+                let (lo, hi) = sil.band_reach(j, h, reach)?;
+                let lo = libm::floorf(lo - h).max(0.0).min(width as f32);
+                let hi = (libm::ceilf(hi + h) + 1.0).max(0.0).min(width as f32);
+                // NaN clamps to a bound: the whole row.
+                let (lo, hi) = (lo as u32, hi as u32);
+                (lo < hi).then_some((lo, hi))
+            }
+        }
+    }
+
+    /// The rows it can reach in an image `height` tall.
+    fn rows(&self, height: u32) -> (u32, u32) {
+        match *self {
+            Region::Rect(r) => (r.top_left.y as u32, r.top_left.y as u32 + r.size.height),
+            Region::Ellipse { sil, pad, .. } => {
+                let (a, b) = sil.rows(height);
+                if pad == 0 || a >= b {
+                    (a, b)
+                } else {
+                    (a.saturating_sub(pad + 1), b.saturating_add(pad + 1).min(height))
+                }
+            }
+        }
+    }
+}
+
+/// The regions of one frame, their rectangles, and what tracing them costs.
+#[derive(Clone, Debug)]
+pub struct Changes {
+    size: Size,
+    regions: Vec<(Region, Rectangle), MAX_REGIONS>,
+    rects: Vec<Rectangle, MAX_REGIONS>,
+    refused: Option<FrameError>,
+    full: bool,
+}
+
+impl Changes {
+    fn empty(size: Size) -> Self {
+        Self {
+            size,
+            regions: Vec::new(),
+            rects: Vec::new(),
+            refused: None,
+            full: false,
+        }
+    }
+
+    fn full(size: Size) -> Self {
+        let image = Rectangle::new(Point::zero(), size);
+        let mut plan = Self::empty(size);
+        let _ = plan.regions.push((Region::Rect(image), image));
+        let _ = plan.rects.push(image);
+        plan.full = true;
+        plan
+    }
+
+    fn refusal(size: Size, why: FrameError) -> Self {
+        let mut plan = Self::empty(size);
+        plan.refused = Some(why);
+        plan
+    }
+
+    /// Adds a region with its bounding box (none if it reaches no pixel); `false` if it
+    /// cannot be planned (not a bounded ellipse, or one too many).
+    fn push(&mut self, region: Option<Region>) -> bool {
+        let Some(region) = region else {
+            return false;
+        };
+        let (j0, j1) = region.rows(self.size.height);
+        let (mut x0, mut x1, mut y0, mut y1) = (u32::MAX, 0, u32::MAX, 0);
+        for j in j0..j1 {
+            if let Some((lo, hi)) = region.span(j, self.size.width) {
+                x0 = x0.min(lo);
+                x1 = x1.max(hi);
+                y0 = y0.min(j);
+                y1 = j + 1;
+            }
+        }
+        if x0 >= x1 {
+            return true; // off the image
+        }
+        let bbox = Rectangle::new(Point::new(x0 as i32, y0 as i32), Size::new(x1 - x0, y1 - y0));
+        self.regions.push((region, bbox)).is_ok()
+    }
+
+    /// The traced rectangles: the regions' boxes, those that overlap merged into one,
+    /// until none does.
+    fn merge(&mut self) {
+        self.rects.clear();
+        for &(_, b) in &self.regions {
+            let _ = self.rects.push(b);
+        }
+        let mut merged = true;
+        while merged {
+            merged = false;
+            'outer: for a in 0..self.rects.len() {
+                for b in a + 1..self.rects.len() {
+                    let (Some(&ra), Some(&rb)) = (self.rects.get(a), self.rects.get(b)) else {
+                        continue;
+                    };
+                    if !ra.intersection(&rb).is_zero_sized() {
+                        if let Some(slot) = self.rects.get_mut(a) {
+                            *slot = bounding(ra, rb);
+                        }
+                        self.rects.swap_remove(b);
+                        merged = true;
+                        break 'outer;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The whole frame is drawn.
+    #[must_use]
+    pub fn is_full(&self) -> bool {
+        self.full
+    }
+
+    /// Nothing changed: nothing to trace or send.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.rects.is_empty()
+    }
+
+    /// Why the frame cannot be drawn ([`Render::check`]); nothing is traced then.
+    #[must_use]
+    pub fn refused(&self) -> Option<FrameError> {
+        self.refused
+    }
+
+    /// The rectangles traced (image coordinates), disjoint.
+    pub fn rectangles(&self) -> impl Iterator<Item = Rectangle> + '_ {
+        self.rects.iter().copied()
+    }
+
+    /// Pixels traced: the rectangles' area.
+    #[must_use]
+    pub fn traced(&self) -> u32 {
+        self.rects.iter().map(|r| r.size.width * r.size.height).sum()
+    }
+
+    /// The changed runs `[lo, hi)` of image row `j`, left to right, disjoint, runs of
+    /// one rectangle closer than [`MERGE_GAP`] merged: what a DMA sender sends of the
+    /// row.
+    #[must_use]
+    pub fn runs(&self, j: u32) -> Runs {
+        let mut runs = Runs {
+            runs: [(0, 0); MAX_REGIONS],
+            len: 0,
+            next: 0,
+        };
+        for rect in &self.rects {
+            let (y0, y1) = (rect.top_left.y as u32, rect.top_left.y as u32 + rect.size.height);
+            if !(y0 <= j && j < y1) {
+                continue;
+            }
+            let from = runs.len;
+            for (region, bbox) in &self.regions {
+                if bbox.intersection(rect).is_zero_sized() {
+                    continue;
+                }
+                if let Some(span) = region.span(j, self.size.width) {
+                    runs.insert(span, from, MERGE_GAP);
+                }
+            }
+        }
+        runs.sort();
+        runs
+    }
+
+    /// Pixels and windows sent: the runs of every row.
+    #[must_use]
+    pub fn sent(&self) -> (u32, u32) {
+        let (mut pixels, mut windows) = (0, 0);
+        for j in 0..self.size.height {
+            for (lo, hi) in self.runs(j) {
+                pixels += hi - lo;
+                windows += 1;
+            }
+        }
+        (pixels, windows)
+    }
+
+    /// Traces the changed pixels of rows `rows` into `buf` (row-major, the image's
+    /// width a row, as [`Render::draw_band`] takes it): the pixels of [`Changes::runs`]
+    /// (and the rest of their rectangles) get the full render's colours, the others
+    /// keep what `buf` held.
+    ///
+    /// # Errors
+    ///
+    /// [`Render::draw_band`]'s.
+    pub fn draw_band<C, const N: usize, const L: usize, const P: usize, const D: usize>(
+        &self,
+        render: &Render<'_, N, C, L, P, D>,
+        rows: core::ops::Range<u32>,
+        buf: &mut [C],
+    ) -> Result<(), BandError>
+    where
+        C: PixelColor + From<Rgb888>,
+    {
+        let (band, mut sink) = render.band(rows, buf)?;
+        for rect in &self.rects {
+            let clip = rect.intersection(&band);
+            if clip.is_zero_sized() {
+                continue;
+            }
+            let Ok(()) = render.render(clip, Point::zero(), &mut sink);
+        }
+        match sink.refused {
+            None => Ok(()),
+            Some(why) => Err(BandError::Frame(why)),
+        }
+    }
+
+    fn draw<C, Tg, const N: usize, const L: usize, const P: usize, const D: usize>(
+        &self,
+        render: &Render<'_, N, C, L, P, D>,
+        target: &mut Tg,
+    ) -> Result<FrameStats, Tg::Error>
+    where
+        C: PixelColor + From<Rgb888>,
+        Tg: DrawTarget<Color = C>,
+    {
+        let mut stats = FrameStats {
+            full: self.full,
+            refused: self.refused,
+            ..FrameStats::default()
+        };
+        if self.refused.is_some() {
+            return Ok(stats);
+        }
+        let offset = render.offset();
+        let bbox = target.bounding_box();
+        for rect in &self.rects {
+            let clip = Rectangle::new(rect.top_left + offset, rect.size).intersection(&bbox);
+            if clip.is_zero_sized() {
+                continue;
+            }
+            stats.traced += clip.size.width * clip.size.height;
+            let mut sink = RunSink {
+                target: &mut *target,
+                changes: self,
+                offset,
+                stats: &mut stats,
+                full: self.full,
+                color: PhantomData,
+            };
+            render.render(clip, offset, &mut sink)?;
+        }
+        Ok(stats)
+    }
+}
+
+/// The changed runs of one row ([`Changes::runs`]).
+#[derive(Clone, Debug)]
+pub struct Runs {
+    runs: [(u32, u32); MAX_REGIONS],
+    len: usize,
+    next: usize,
+}
+
+impl Runs {
+    /// Adds `span` to the runs from index `from` on (one rectangle's), merging it with
+    /// any it overlaps or comes within `gap` of.
+    fn insert(&mut self, (mut lo, mut hi): (u32, u32), from: usize, gap: u32) {
+        let mut k = from;
+        while k < self.len {
+            let Some(&(a, b)) = self.runs.get(k) else { break };
+            if lo <= b + gap && a <= hi + gap {
+                lo = lo.min(a);
+                hi = hi.max(b);
+                // Remove run k (order is restored by `sort`).
+                self.len -= 1;
+                let last = self.runs.get(self.len).copied().unwrap_or((0, 0));
+                if let Some(slot) = self.runs.get_mut(k) {
+                    *slot = last;
+                }
+                k = from;
+                continue;
+            }
+            k += 1;
+        }
+        if let Some(slot) = self.runs.get_mut(self.len) {
+            *slot = (lo, hi);
+            self.len += 1;
+        }
+    }
+
+    fn sort(&mut self) {
+        if let Some(runs) = self.runs.get_mut(..self.len) {
+            runs.sort_unstable_by_key(|r| r.0);
+        }
+    }
+}
+
+impl Iterator for Runs {
+    type Item = (u32, u32);
+    fn next(&mut self) -> Option<(u32, u32)> {
+        let run = self
+            .runs
+            .get(self.next)
+            .copied()
+            .filter(|_| self.next < self.len)?;
+        self.next += 1;
+        Some(run)
+    }
+}
+
+/// Rows into a `DrawTarget`, only their changed runs, each run its own
+/// `fill_contiguous`.
+struct RunSink<'t, 'c, 's, Tg, C> {
+    target: &'t mut Tg,
+    changes: &'c Changes,
+    offset: Point,
+    stats: &'s mut FrameStats,
+    full: bool,
+    color: PhantomData<C>,
+}
+
+impl<Tg: DrawTarget<Color = C>, C: PixelColor + From<Rgb888>> RowSink for RunSink<'_, '_, '_, Tg, C> {
+    type Error = Tg::Error;
+    fn row<R: PixelRow>(&mut self, area: Rectangle, row: R) -> Result<(), Tg::Error> {
+        let ColorRuns {
+            background,
+            before,
+            traced,
+            traced_len: _,
+            after,
+        } = row.color_runs();
+        let background = C::from(background);
+        let mut colors = core::iter::repeat_n(background, before as usize)
+            .chain(traced.map(C::from))
+            .chain(core::iter::repeat_n(background, after as usize));
+        if self.full {
+            self.stats.sent += area.size.width;
+            self.stats.windows += 1;
+            return self.target.fill_contiguous(&area, colors);
+        }
+        // The area's columns in the image.
+        let j = (area.top_left.y - self.offset.y) as u32;
+        let x0 = (area.top_left.x - self.offset.x) as u32;
+        let x1 = x0 + area.size.width;
+        let mut at = x0;
+        for (lo, hi) in self.changes.runs(j) {
+            let (lo, hi) = (lo.max(x0), hi.min(x1));
+            if lo >= hi {
+                continue;
+            }
+            // Skip to the run, then hand the target exactly the run's colours, however
+            // many of them it takes.
+            if lo > at {
+                colors.nth((lo - at - 1) as usize);
+            }
+            let len = hi - lo;
+            let mut taken = 0;
+            let run = Rectangle::new(
+                Point::new(lo as i32 + self.offset.x, area.top_left.y),
+                Size::new(len, 1),
+            );
+            self.target
+                .fill_contiguous(&run, colors.by_ref().take(len as usize).inspect(|_| taken += 1))?;
+            if taken < len {
+                colors.nth((len - taken - 1) as usize);
+            }
+            at = hi;
+            self.stats.sent += len;
+            self.stats.windows += 1;
+        }
+        Ok(())
+    }
+}
+
+/// The smallest rectangle holding both.
+fn bounding(a: Rectangle, b: Rectangle) -> Rectangle {
+    let x0 = a.top_left.x.min(b.top_left.x);
+    let y0 = a.top_left.y.min(b.top_left.y);
+    let x1 = (a.top_left.x + a.size.width as i32).max(b.top_left.x + b.size.width as i32);
+    let y1 = (a.top_left.y + a.size.height as i32).max(b.top_left.y + b.size.height as i32);
+    Rectangle::new(Point::new(x0, y0), Size::new((x1 - x0) as u32, (y1 - y0) as u32))
+}
+
+// Scenes are compared by their bits: `-0.0` and `0.0` differ, and a NaN equals itself,
+// so a change is never missed and an unchanged object never redrawn.
+
+fn bits(v: Vec3) -> [u32; 3] {
+    [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()]
+}
+
+fn same_material(a: &Material, b: &Material) -> bool {
+    [a.specular, a.shininess, a.reflect].map(f32::to_bits)
+        == [b.specular, b.shininess, b.reflect].map(f32::to_bits)
+}
+
+fn same_sphere(a: &Sphere, b: &Sphere) -> bool {
+    bits(a.center) == bits(b.center)
+        && a.radius.to_bits() == b.radius.to_bits()
+        && a.color == b.color
+        && same_material(&a.material, &b.material)
+}
+
+fn same_light(a: &Light, b: &Light) -> bool {
+    match (*a, *b) {
+        (
+            Light::Directional {
+                direction: d,
+                intensity: i,
+            },
+            Light::Directional {
+                direction: e,
+                intensity: j,
+            },
+        )
+        | (
+            Light::Point {
+                position: d,
+                intensity: i,
+            },
+            Light::Point {
+                position: e,
+                intensity: j,
+            },
+        ) => bits(d) == bits(e) && i.to_bits() == j.to_bits(),
+        _ => false,
+    }
+}
+
+fn same_plane(a: &Plane, b: &Plane) -> bool {
+    bits(a.point) == bits(b.point)
+        && bits(a.normal) == bits(b.normal)
+        && a.color == b.color
+        && a.checker == b.checker
+        && a.checker_size.to_bits() == b.checker_size.to_bits()
+        && same_material(&a.material, &b.material)
+}
+
+fn same_settings(a: Settings, b: Settings) -> bool {
+    a.ambient.to_bits() == b.ambient.to_bits() && a.max_depth == b.max_depth && a.shadows == b.shadows
+}
+
+fn same_options(a: Options, b: Options) -> bool {
+    let eps = |o: Options| match o.secondary {
+        SecondaryOrigin::Convex => None,
+        SecondaryOrigin::Epsilon(e) => Some(e.to_bits()),
+    };
+    eps(a) == eps(b)
+        && a.span_culling == b.span_culling
+        && a.anchor_interval == b.anchor_interval
+        && a.shadow_any_hit == b.shadow_any_hit
+}
+
+fn same_params(a: &CameraParams, b: &CameraParams) -> bool {
+    bits(a.eye) == bits(b.eye)
+        && bits(a.look_at) == bits(b.look_at)
+        && bits(a.up) == bits(b.up)
+        && a.fov_y.to_bits() == b.fov_y.to_bits()
+        && a.fov_x.map(f32::to_bits) == b.fov_x.map(f32::to_bits)
+        && a.size == b.size
+}
+
+/// Everything of the scene but its spheres' own numbers: the background, settings,
+/// lights, planes and the number of spheres.
+fn same_frame_wide<const N: usize, const L: usize, const P: usize, const D: usize>(
+    a: &Scene<N, L, P, D>,
+    b: &Scene<N, L, P, D>,
+) -> bool {
+    a.background() == b.background()
+        && same_settings(a.settings(), b.settings())
+        && a.spheres().len() == b.spheres().len()
+        && a.lights().len() == b.lights().len()
+        && a.planes().len() == b.planes().len()
+        && a.lights().iter().zip(b.lights()).all(|(x, y)| same_light(x, y))
+        && a.planes().iter().zip(b.planes()).all(|(x, y)| same_plane(x, y))
+}

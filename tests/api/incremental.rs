@@ -1,0 +1,424 @@
+//! Incremental frames: after any sequence of them the display equals the last frame's
+//! full render, bit for bit — every method, sampling, arithmetic and colour format,
+//! whole, offset and clipped — and they trace and send less than the whole frame.
+
+use std::convert::Infallible;
+
+use embedded_graphics::pixelcolor::{BinaryColor, Gray4, Rgb565, Rgb888};
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+use embedded_raytracer::{
+    Camera, CameraParams, Incremental, Light, Material, Method, Plane, Render, Sampling, Scene, Settings,
+    Sphere, SubSamples, Vec3,
+};
+
+use crate::common::Rng;
+
+/// A frame buffer of any colour, every pixel starting at `fill`; counts the pixels and
+/// `fill_contiguous` calls it gets.
+#[derive(Clone, PartialEq)]
+struct Buffer<C> {
+    size: Size,
+    px: Vec<C>,
+    written: usize,
+    calls: usize,
+}
+
+impl<C: PixelColor> Buffer<C> {
+    fn new(size: Size, fill: C) -> Self {
+        Self {
+            size,
+            px: vec![fill; (size.width * size.height) as usize],
+            written: 0,
+            calls: 0,
+        }
+    }
+}
+
+impl<C: PixelColor> OriginDimensions for Buffer<C> {
+    fn size(&self) -> Size {
+        self.size
+    }
+}
+
+impl<C: PixelColor> DrawTarget for Buffer<C> {
+    type Color = C;
+    type Error = Infallible;
+    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(&mut self, pixels: I) -> Result<(), Infallible> {
+        let w = self.size.width as i32;
+        for Pixel(p, c) in pixels {
+            assert!(
+                (0..w).contains(&p.x) && (0..self.size.height as i32).contains(&p.y),
+                "drawn outside the target: {p:?}"
+            );
+            self.px[(p.y * w + p.x) as usize] = c;
+            self.written += 1;
+        }
+        Ok(())
+    }
+    fn fill_contiguous<I: IntoIterator<Item = C>>(
+        &mut self,
+        area: &Rectangle,
+        colors: I,
+    ) -> Result<(), Infallible> {
+        self.calls += 1;
+        self.draw_iter(area.points().zip(colors).map(|(p, c)| Pixel(p, c)))
+    }
+}
+
+const SIZE: Size = Size::new(40, 32);
+
+fn camera(rng: &mut Rng) -> Camera {
+    let eye = Vec3::new(rng.range(-2.0, 2.0), rng.range(0.5, 3.0), rng.range(6.0, 9.0));
+    CameraParams::new(
+        eye,
+        Vec3::ZERO,
+        Vec3::new(0.0, 1.0, 0.0),
+        rng.range(0.5, 1.0),
+        SIZE,
+    )
+    .build()
+    .unwrap()
+}
+
+fn color(rng: &mut Rng) -> Rgb888 {
+    Rgb888::new(
+        (rng.next() * 255.0) as u8,
+        (rng.next() * 255.0) as u8,
+        (rng.next() * 255.0) as u8,
+    )
+}
+
+fn sphere(rng: &mut Rng) -> Sphere {
+    Sphere::new(rng.vec(2.0), rng.range(0.2, 1.0), color(rng))
+}
+
+/// One random motion of the scene: a sphere moved a little or far, resized, recoloured,
+/// given a `-0.0` coordinate, or nothing.
+fn motion<const N: usize, const L: usize, const P: usize, const D: usize>(
+    rng: &mut Rng,
+    scene: &mut Scene<N, L, P, D>,
+) {
+    let n = scene.spheres().len();
+    let k = ((rng.next() * n as f32) as usize).min(n - 1);
+    let mut s = scene.spheres()[k];
+    match (rng.next() * 6.0) as u32 {
+        0 => s.center = s.center + rng.vec(0.05),
+        1 => s.center = s.center + rng.vec(1.0),
+        2 => s.radius = rng.range(0.2, 1.0),
+        3 => s.color = color(rng),
+        4 => s.center.x = if s.center.x == 0.0 { -0.0 } else { 0.0 },
+        _ => return,
+    }
+    scene.set_sphere(k, s).unwrap();
+}
+
+/// Draws `frames` incremental frames of random motions onto a target, and checks it
+/// equals the last frame's full render drawn onto a fresh target of the same start.
+#[allow(clippy::too_many_arguments)]
+fn check_sequence<C, const N: usize, const L: usize, const P: usize, const D: usize>(
+    rng: &mut Rng,
+    mut scene: Scene<N, L, P, D>,
+    camera: &Camera,
+    method: Method,
+    sampling: Sampling,
+    offset: Point,
+    clip: Option<Rectangle>,
+    fill: C,
+    frames: usize,
+) -> (usize, usize)
+where
+    C: PixelColor + From<Rgb888> + core::fmt::Debug,
+{
+    let target_size = Size::new(SIZE.width + 8, SIZE.height + 6);
+    let mut display = Buffer::new(target_size, fill);
+    let mut shown = Incremental::new();
+    fn render<'a, C, const N: usize, const L: usize, const P: usize, const D: usize>(
+        scene: &'a Scene<N, L, P, D>,
+        camera: &'a Camera,
+        (method, sampling, offset): (Method, Sampling, Point),
+    ) -> Render<'a, N, C, L, P, D> {
+        Render::new(scene, camera)
+            .with_method(method)
+            .with_sampling(sampling)
+            .with_offset(offset)
+    }
+    let how = (method, sampling, offset);
+    let (mut traced, mut sent) = (0, 0);
+    for f in 0..frames {
+        if f > 0 {
+            motion(rng, &mut scene);
+        }
+        let stats = match clip {
+            None => shown.draw(&render(&scene, camera, how), &mut display).unwrap(),
+            Some(c) => shown
+                .draw(&render(&scene, camera, how), &mut display.clipped(&c))
+                .unwrap(),
+        };
+        assert!(stats.refused.is_none());
+        if f > 0 {
+            traced += stats.traced as usize;
+            sent += stats.sent as usize;
+        }
+    }
+    let mut full = Buffer::new(target_size, fill);
+    match clip {
+        None => render(&scene, camera, how).draw(&mut full).unwrap(),
+        Some(c) => render(&scene, camera, how).draw(&mut full.clipped(&c)).unwrap(),
+    }
+    let diff = display.px.iter().zip(&full.px).filter(|(a, b)| a != b).count();
+    assert_eq!(
+        diff, 0,
+        "{diff} pixels differ from the full render: {method} {sampling:?} offset {offset:?} clip {clip:?}"
+    );
+    (traced, sent)
+}
+
+fn samplings() -> [Sampling; 3] {
+    let two = SubSamples::new(2).unwrap();
+    [Sampling::Center, Sampling::Grid(two), Sampling::Adaptive(two)]
+}
+
+#[test]
+fn lab1_sequences_equal_the_full_render_for_every_method() {
+    let mut rng = Rng(0x1234_5678);
+    let (mut traced, mut frames) = (0, 0);
+    for case in 0..6 {
+        let camera = camera(&mut rng);
+        let mut scene: Scene<4> = Scene::new(Rgb888::new(10, 20, 30));
+        for _ in 0..4 {
+            scene.push(sphere(&mut rng)).unwrap();
+        }
+        for method in Method::ALL.iter().copied().chain([Method::INTEGER]) {
+            let (t, _) = check_sequence(
+                &mut rng,
+                scene.clone(),
+                &camera,
+                method,
+                Sampling::Center,
+                Point::zero(),
+                None,
+                Rgb565::BLUE,
+                5,
+            );
+            traced += t;
+            frames += 4;
+        }
+        // Offset and clipped, in other colour formats.
+        let offset = Point::new(case % 5, 3);
+        let clip = Rectangle::new(Point::new(6, 2), Size::new(25, 30));
+        check_sequence(
+            &mut rng,
+            scene.clone(),
+            &camera,
+            Method::F32,
+            Sampling::Center,
+            offset,
+            Some(clip),
+            Rgb888::WHITE,
+            6,
+        );
+        check_sequence(
+            &mut rng,
+            scene.clone(),
+            &camera,
+            Method::INTEGER,
+            Sampling::Center,
+            offset,
+            None,
+            BinaryColor::On,
+            6,
+        );
+        check_sequence(
+            &mut rng,
+            scene.clone(),
+            &camera,
+            Method::F32,
+            Sampling::Center,
+            offset,
+            Some(clip),
+            Gray4::new(3),
+            6,
+        );
+    }
+    // The work follows the change: on average far less than whole frames.
+    assert!(
+        traced < frames * (SIZE.width * SIZE.height) as usize,
+        "traced {traced} in {frames} frames"
+    );
+}
+
+#[test]
+fn anti_aliased_sequences_equal_the_full_render() {
+    let mut rng = Rng(0x9e37_79b9);
+    for _ in 0..4 {
+        let camera = camera(&mut rng);
+        let mut scene: Scene<3> = Scene::new(Rgb888::new(0, 0, 0));
+        for _ in 0..3 {
+            scene.push(sphere(&mut rng)).unwrap();
+        }
+        for sampling in samplings() {
+            for method in [Method::F32, Method::ALL[0], Method::INTEGER] {
+                check_sequence(
+                    &mut rng,
+                    scene.clone(),
+                    &camera,
+                    method,
+                    sampling,
+                    Point::new(2, 1),
+                    None,
+                    Rgb888::BLACK,
+                    5,
+                );
+            }
+        }
+    }
+}
+
+/// A lit scene: a checkered floor, one or two lights, shadows, a mirror sphere.
+fn lit_scene(rng: &mut Rng, mirror: bool, lights: usize) -> Scene<3, 2, 1, 2> {
+    let mut scene: Scene<3, 2, 1, 2> = Scene::new(Rgb888::new(40, 60, 90));
+    for k in 0..3 {
+        let mut s = sphere(rng);
+        s.center.y = s.center.y.abs() + s.radius - 0.9;
+        if mirror && k == 2 {
+            s = s.with_material(Material::new(0.5, 32.0, 0.6));
+        }
+        scene.push(s).unwrap();
+    }
+    scene
+        .push_plane(
+            Plane::new(
+                Vec3::new(0.0, -1.0, 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+                Rgb888::new(200, 200, 200),
+            )
+            .with_checker(Rgb888::new(40, 40, 40), 0.7),
+        )
+        .unwrap();
+    scene
+        .push_light(Light::directional(Vec3::new(-1.0, -2.0, -0.5), 0.8))
+        .unwrap();
+    if lights > 1 {
+        scene
+            .push_light(Light::point(Vec3::new(2.0, 4.0, 3.0), 0.6))
+            .unwrap();
+    }
+    scene
+        .set_settings(Settings::DEFAULT.with_shadows(rng.next() < 0.8))
+        .unwrap();
+    scene
+}
+
+#[test]
+fn lit_sequences_equal_the_full_render() {
+    let mut rng = Rng(0x0bad_cafe);
+    for case in 0..8 {
+        let camera = camera(&mut rng);
+        let scene = lit_scene(&mut rng, case % 2 == 1, 1 + case % 2);
+        for sampling in samplings() {
+            let method = if case % 3 == 0 {
+                Method::ALL[case]
+            } else {
+                Method::F32
+            };
+            check_sequence(
+                &mut rng,
+                scene.clone(),
+                &camera,
+                method,
+                sampling,
+                Point::new(1, 2),
+                None,
+                Rgb565::BLACK,
+                5,
+            );
+        }
+    }
+}
+
+#[test]
+fn nothing_moved_sends_nothing_and_a_lost_area_is_redrawn() {
+    let mut rng = Rng(7);
+    let camera = camera(&mut rng);
+    let scene = lit_scene(&mut rng, false, 1);
+    let render = Render::new(&scene, &camera);
+    let mut display = Buffer::new(SIZE, Rgb565::BLACK);
+    let mut shown = Incremental::new();
+    assert!(shown.draw(&render, &mut display).unwrap().full);
+    let calls = display.calls;
+    let again = shown.draw(&render, &mut display).unwrap();
+    assert_eq!(
+        (again.traced, again.sent, again.windows, again.full),
+        (0, 0, 0, false)
+    );
+    assert_eq!(display.calls, calls);
+
+    // An overlay drawn over the picture, then told: that rectangle alone is redrawn.
+    let overlay = Rectangle::new(Point::new(3, 4), Size::new(10, 7));
+    display.fill_solid(&overlay, Rgb565::RED).unwrap();
+    shown.invalidate_area(overlay);
+    let redraw = shown.draw(&render, &mut display).unwrap();
+    assert_eq!((redraw.sent, redraw.full), (70, false));
+    let mut full = Buffer::new(SIZE, Rgb565::BLACK);
+    render.draw(&mut full).unwrap();
+    assert!(display.px == full.px);
+
+    // A frame-wide change (the camera) draws the whole frame.
+    let moved = CameraParams {
+        eye: camera.eye() + Vec3::new(0.1, 0.0, 0.0),
+        ..*camera.params()
+    }
+    .build()
+    .unwrap();
+    assert!(
+        shown
+            .draw(&Render::new(&scene, &moved), &mut display)
+            .unwrap()
+            .full
+    );
+}
+
+#[test]
+fn bands_learn_the_changed_runs_and_trace_only_them() {
+    let mut rng = Rng(99);
+    let camera = camera(&mut rng);
+    let mut scene: Scene<3> = Scene::new(Rgb888::new(0, 0, 0));
+    for _ in 0..3 {
+        scene.push(sphere(&mut rng)).unwrap();
+    }
+    let width = SIZE.width as usize;
+    // The display: a buffer the "DMA" copies the changed runs into.
+    let mut display = vec![Rgb565::BLACK; width * SIZE.height as usize];
+    let mut shown: Incremental<3> = Incremental::new();
+    let mut band = vec![Rgb565::BLACK; width * 8];
+    for f in 0..8 {
+        if f > 0 {
+            motion(&mut rng, &mut scene);
+        }
+        let render = Render::new(&scene, &camera);
+        let changes = shown.update(&render);
+        assert_eq!(changes.is_full(), f == 0);
+        for j0 in (0..SIZE.height).step_by(8) {
+            let rows = j0..(j0 + 8).min(SIZE.height);
+            let band = &mut band[..width * rows.len()];
+            changes.draw_band(&render, rows.clone(), band).unwrap();
+            for j in rows {
+                for (lo, hi) in changes.runs(j) {
+                    let (lo, hi) = (lo as usize, hi as usize);
+                    let row = (j - j0) as usize * width;
+                    display[j as usize * width + lo..j as usize * width + hi]
+                        .copy_from_slice(&band[row + lo..row + hi]);
+                }
+            }
+        }
+        let mut full = vec![Rgb565::BLACK; width * SIZE.height as usize];
+        Render::new(&scene, &camera)
+            .draw_band(0..SIZE.height, &mut full)
+            .unwrap();
+        assert!(
+            display == full,
+            "frame {f}: the runs sent do not make the full frame"
+        );
+    }
+}

@@ -80,6 +80,15 @@ pub const MAX_REGIONS: usize = 12;
 /// second window.
 pub const MERGE_GAP: u32 = 5;
 
+/// A traced rectangle is cut into strips of rows that follow the changed runs; a strip
+/// grows while it traces at most this many pixels outside the runs, about what the
+/// frame's set-up costs a strip in pixels of a lit scene. A tuning constant: any value
+/// draws the same pixels.
+pub const STRIP_SETUP: u32 = 96;
+
+/// At most this many strips a frame; more trace each rectangle whole.
+const MAX_STRIPS: usize = 48;
+
 /// What one incremental frame cost: pixels traced (the area of the rectangles the render
 /// was clipped to, where the kernel traced every pixel its spans reach), pixels sent and
 /// the windows (runs) they were sent in.
@@ -380,7 +389,14 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             // The surfaces a moved sphere's shadow can fall on, and the mirrors that can
             // show it: each unchanged sphere once.
             for (k, s) in scene.spheres().iter().enumerate() {
-                if !changed(k) && (shadows || (mirrors && s.material.reflect != 0.0)) {
+                let receives = shadows
+                    && (0..scene.spheres().len()).filter(|&m| changed(m)).any(|m| {
+                        [shown.scene.spheres().get(m), scene.spheres().get(m)]
+                            .into_iter()
+                            .flatten()
+                            .any(|mover| scene.lights().iter().any(|l| can_shadow(mover, s, l)))
+                    });
+                if !changed(k) && (receives || (mirrors && s.material.reflect != 0.0)) {
                     ok &= add_sphere(&mut plan, s);
                 }
             }
@@ -522,6 +538,9 @@ pub struct Changes {
     size: Size,
     regions: Vec<(Region, Rectangle), MAX_REGIONS>,
     rects: Vec<Rectangle, MAX_REGIONS>,
+    /// The rectangles the render is clipped to: each of `rects` cut into strips of rows
+    /// that follow the runs' extent.
+    strips: Vec<Rectangle, MAX_STRIPS>,
     refused: Option<FrameError>,
     full: bool,
 }
@@ -532,6 +551,7 @@ impl Changes {
             size,
             regions: Vec::new(),
             rects: Vec::new(),
+            strips: Vec::new(),
             refused: None,
             full: false,
         }
@@ -542,6 +562,7 @@ impl Changes {
         let mut plan = Self::empty(size);
         let _ = plan.regions.push((Region::Rect(image), image));
         let _ = plan.rects.push(image);
+        let _ = plan.strips.push(image);
         plan.full = true;
         plan
     }
@@ -601,6 +622,68 @@ impl Changes {
                 }
             }
         }
+        self.strips.clear();
+        for r in 0..self.rects.len() {
+            if !self.cut_strips(r) {
+                // Too many strips: each rectangle whole.
+                self.strips.clear();
+                for &rect in &self.rects {
+                    let _ = self.strips.push(rect);
+                }
+                return;
+            }
+        }
+    }
+
+    /// Cuts rectangle `r` into strips of rows, each as wide as its rows' runs reach: a
+    /// strip grows a row while the pixels it would trace outside the runs stay within
+    /// [`STRIP_SETUP`] (the cost of the frame set-up a new strip pays); a row without a
+    /// run ends it. `false` if the strips do not fit.
+    fn cut_strips(&mut self, r: usize) -> bool {
+        let Some(&rect) = self.rects.get(r) else {
+            return true;
+        };
+        let (x0, x1) = (rect.top_left.x as u32, rect.top_left.x as u32 + rect.size.width);
+        let (y0, y1) = (rect.top_left.y as u32, rect.top_left.y as u32 + rect.size.height);
+        // The open strip: first row, columns, and the pixels of its rows' runs' extents.
+        let mut open: Option<(u32, u32, u32, u32)> = None;
+        let mut ok = true;
+        let mut close =
+            |strips: &mut Vec<Rectangle, MAX_STRIPS>, (top, lo, hi, _): (u32, u32, u32, u32), end: u32| {
+                let strip = Rectangle::new(Point::new(lo as i32, top as i32), Size::new(hi - lo, end - top));
+                ok &= strips.push(strip).is_ok();
+            };
+        for j in y0..y1 {
+            // This row's runs within the rectangle (runs of other rectangles lie outside it).
+            let extent = self
+                .runs(j)
+                .filter(|&(lo, hi)| lo < x1 && hi > x0)
+                .fold(None, |e: Option<(u32, u32)>, (lo, hi)| {
+                    Some(e.map_or((lo, hi), |(a, b)| (a.min(lo), b.max(hi))))
+                });
+            open = match (open, extent) {
+                (None, None) => None,
+                (None, Some((lo, hi))) => Some((j, lo, hi, hi - lo)),
+                (Some(strip), None) => {
+                    close(&mut self.strips, strip, j);
+                    None
+                }
+                (Some((top, a, b, used)), Some((lo, hi))) => {
+                    let (na, nb) = (a.min(lo), b.max(hi));
+                    let used = used + (hi - lo);
+                    if (nb - na) * (j + 1 - top) - used <= STRIP_SETUP {
+                        Some((top, na, nb, used))
+                    } else {
+                        close(&mut self.strips, (top, a, b, used), j);
+                        Some((j, lo, hi, hi - lo))
+                    }
+                }
+            };
+        }
+        if let Some(strip) = open {
+            close(&mut self.strips, strip, y1);
+        }
+        ok
     }
 
     /// The whole frame is drawn.
@@ -623,13 +706,13 @@ impl Changes {
 
     /// The rectangles traced (image coordinates), disjoint.
     pub fn rectangles(&self) -> impl Iterator<Item = Rectangle> + '_ {
-        self.rects.iter().copied()
+        self.strips.iter().copied()
     }
 
     /// Pixels traced: the rectangles' area.
     #[must_use]
     pub fn traced(&self) -> u32 {
-        self.rects.iter().map(|r| r.size.width * r.size.height).sum()
+        self.strips.iter().map(|r| r.size.width * r.size.height).sum()
     }
 
     /// The changed runs `[lo, hi)` of image row `j`, left to right, disjoint, runs of
@@ -692,7 +775,7 @@ impl Changes {
         C: PixelColor + From<Rgb888>,
     {
         let (band, mut sink) = render.band(rows, buf)?;
-        for rect in &self.rects {
+        for rect in &self.strips {
             let clip = rect.intersection(&band);
             if clip.is_zero_sized() {
                 continue;
@@ -724,7 +807,7 @@ impl Changes {
         }
         let offset = render.offset();
         let bbox = target.bounding_box();
-        for rect in &self.rects {
+        for rect in &self.strips {
             let clip = Rectangle::new(rect.top_left + offset, rect.size).intersection(&bbox);
             if clip.is_zero_sized() {
                 continue;
@@ -860,6 +943,52 @@ impl<Tg: DrawTarget<Color = C>, C: PixelColor + From<Rgb888>> RowSink for RunSin
             self.stats.windows += 1;
         }
         Ok(())
+    }
+}
+
+/// Whether sphere `k` can lie between a point of sphere `j` and `light`: whether `k`'s
+/// shadow can fall on `j`. Exact geometry in `f64` with both radii enlarged by `2⁻⁸` of
+/// the lengths involved (as the shadow silhouettes are; the kernel's shadow test is
+/// within about `2⁻²²` of them):
+/// - directional light (toward it `u`): `j`'s cylinder along `u` meets `k`, i.e. `k`'s
+///   centre lies within `r_j + r_k` of the line through `j`'s centre along `u`, not
+///   behind it;
+/// - point light `P`: the cones from `P` around the two spheres overlap (angle between
+///   their axes below the sum of their half-angles) and `j` reaches beyond `k`'s near
+///   side; a light inside either sphere is always a yes.
+fn can_shadow(k: &Sphere, j: &Sphere, light: &Light) -> bool {
+    let v = |a: Vec3| [f64::from(a.x), f64::from(a.y), f64::from(a.z)];
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (ck, cj) = (v(k.center), v(j.center));
+    let (rk, rj) = (f64::from(k.radius), f64::from(j.radius));
+    match *light {
+        Light::Directional { direction, .. } => {
+            let d = v(direction);
+            let len = libm::sqrt(dot(d, d));
+            let u = [-d[0] / len, -d[1] / len, -d[2] / len];
+            let w = sub(ck, cj);
+            let dist = libm::sqrt(dot(w, w));
+            let reach = (rk + rj) * (1.0 + 1.0 / 256.0) + dist / 256.0;
+            let along = dot(w, u);
+            let perp2 = dot(w, w) - along * along;
+            // NaN (a zero direction) is a yes.
+            !(along < -reach || perp2 > reach * reach)
+        }
+        Light::Point { position, .. } => {
+            let p = v(position);
+            let (wk, wj) = (sub(ck, p), sub(cj, p));
+            let (dk, dj) = (libm::sqrt(dot(wk, wk)), libm::sqrt(dot(wj, wj)));
+            let (mk, mj) = ((dk + rk) / 256.0, (dj + rj) / 256.0);
+            let (rk, rj) = (rk + mk, rj + mj);
+            if !(dk > rk && dj > rj) {
+                return true;
+            }
+            let half = |r: f64, d: f64| libm::asin(r / d);
+            let cos = (dot(wk, wj) / (dk * dj)).clamp(-1.0, 1.0);
+            let theta = libm::acos(cos);
+            !(theta > half(rk, dk) + half(rj, dj) + 1e-9 || dj + rj < dk - rk)
+        }
     }
 }
 

@@ -313,7 +313,7 @@ fn lit_scene(rng: &mut Rng, mirror: bool, lights: usize) -> Scene<3, 2, 1, 2> {
 #[test]
 fn lit_sequences_equal_the_full_render() {
     let mut rng = Rng(0x0bad_cafe);
-    for case in 0..8 {
+    for case in 0..24 {
         let camera = camera(&mut rng);
         let scene = lit_scene(&mut rng, case % 2 == 1, 1 + case % 2);
         for sampling in samplings() {

@@ -15,17 +15,12 @@
 #![no_std]
 #![no_main]
 
+mod frame;
 mod orbit;
 mod scenes;
 
-use core::fmt::{Debug, Write as _};
-
-use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyleBuilder};
-use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use embedded_graphics::text::{Baseline, Text};
 use embedded_hal_bus::spi::ExclusiveDevice;
-use embedded_raytracer::{Camera, CameraError, FrameError, Render};
 use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
 use panic_halt as _;
 use rp235x_hal::{
@@ -37,65 +32,6 @@ use rp235x_hal::{
 #[link_section = ".start_block"]
 #[used]
 pub static IMAGE_DEF: hal::block::ImageDef = hal::block::ImageDef::secure_exe();
-
-/// Why a frame was not drawn.
-enum Failed<E> {
-    Camera(CameraError),
-    Frame(FrameError),
-    Display(E),
-}
-
-/// One frame, in one call. `check` first: `draw` leaves a frame it cannot draw exactly
-/// untouched, which would look like a frozen picture.
-fn frame<D: DrawTarget<Color = Rgb565>>(
-    display: &mut D,
-    camera: Result<Camera, CameraError>,
-) -> Result<(), Failed<D::Error>> {
-    let camera = camera.map_err(Failed::Camera)?;
-    let render = Render::new(&scenes::SHADOWS, &camera);
-    render.check().map_err(Failed::Frame)?;
-    render.draw(display).map_err(Failed::Display)
-}
-
-/// `text` in white on black from the top-left corner, cut into lines of the panel's
-/// width (ASCII: the library's messages are).
-fn show<D: DrawTarget<Color = Rgb565>>(display: &mut D, text: &str) -> Result<(), D::Error> {
-    let style = MonoTextStyleBuilder::new()
-        .font(&FONT_6X10)
-        .text_color(Rgb565::WHITE)
-        .background_color(Rgb565::BLACK)
-        .build();
-    let per_line = (display.bounding_box().size.width as usize / 6)
-        .saturating_sub(1)
-        .max(1);
-    for (row, line) in text.as_bytes().chunks(per_line).enumerate() {
-        let line = core::str::from_utf8(line).unwrap_or("?");
-        Text::with_baseline(line, Point::new(2, 2 + 10 * row as i32), style, Baseline::Top).draw(display)?;
-    }
-    Ok(())
-}
-
-/// The status line: the frame rate, or the error.
-fn status<E: Debug>(drawn: &Result<(), Failed<E>>, us: u64, display_errors: u32) -> heapless::String<256> {
-    let mut s = heapless::String::new();
-    let tenths = 10_000_000 / us.max(1);
-    // A `String` only fails when full; 256 bytes hold every message here.
-    let written = match drawn {
-        Ok(()) => write!(s, "f32 {}.{} fps", tenths / 10, tenths % 10),
-        Err(Failed::Camera(e)) => write!(s, "camera: {e}"),
-        Err(Failed::Frame(e)) => write!(s, "{e}"),
-        Err(Failed::Display(e)) => write!(s, "display error: {e:?}"),
-    }
-    .and_then(|()| match display_errors {
-        0 => Ok(()),
-        n => write!(s, " ({n} label writes failed)"),
-    });
-    if written.is_err() {
-        s.clear();
-        s.push_str("(message too long)").ok();
-    }
-    s
-}
 
 #[hal::entry]
 fn main() -> ! {
@@ -155,11 +91,15 @@ fn main() -> ! {
     let mut display_errors = 0u32;
     loop {
         let start = timer.get_counter().ticks();
-        let drawn = frame(&mut display, orbit::orbit(&scenes::SHADOWS_CAMERA, angle, size));
+        let drawn = frame::frame(
+            &mut display,
+            &scenes::SHADOWS,
+            orbit::orbit(&scenes::SHADOWS_CAMERA, angle, size),
+        );
         let us = timer.get_counter().ticks().wrapping_sub(start);
         // Drawn over the picture; if the display cannot take it, nothing else can
         // show it: counted, and shown once it can.
-        if show(&mut display, &status(&drawn, us, display_errors)).is_err() {
+        if frame::show(&mut display, &frame::status(&drawn, us, display_errors)).is_err() {
             display_errors = display_errors.saturating_add(1);
         }
         angle = orbit::next_angle(angle);

@@ -16,9 +16,9 @@ use embedded_raytracer::{Arithmetic, Camera, FrameError, Method, ObjectRef, Rend
 
 #[path = "../../../boards/rp2040/src/bin/simple/frame.rs"]
 mod rp2040_simple;
-// The Pico's orbit (shared with the two-core example; its scene is `crate::scenes`).
-#[path = "../../../boards/rp2040/src/orbit.rs"]
-mod rp2040_orbit;
+// The Pico's orbit (shared with the two-core example, whose test compiles it; its
+// scene is `crate::scenes`).
+use crate::rp2040_split::orbit as rp2040_orbit;
 
 #[path = "../../../boards/rp2350/src/frame.rs"]
 mod rp2350;

@@ -157,37 +157,26 @@ mod fw {
                 Err(Refused::Frame(e)) => write!(label, "{e}"),
                 Err(Refused::Display) => write!(label, "display write failed"),
             };
+            let written = written.and_then(|()| match label_errors {
+                0 => Ok(()),
+                n => write!(label, " ({n} labels failed)"),
+            });
             // 200 bytes hold every message; a longer one would be cut.
             if written.is_err() {
                 label.truncate(199);
             }
-            // Lines of 39 characters (FONT_6X10 on 240 pixels; the messages are ASCII).
-            // Drawn on the display that just failed, if it did: nothing else can show
+            // Lines of 39 characters (FONT_6X10 on 240 pixels; the messages are ASCII),
+            // drawn on the display that just failed, if it did: nothing else can show
             // it, so a failure here is counted and shown once the display takes it.
-            let mut shown = Ok(());
+            let mut shown = Ok(Point::zero());
             for (row, line) in label.as_bytes().chunks(39).enumerate() {
                 let line = core::str::from_utf8(line).unwrap_or("?");
                 let at = Point::new(2, 2 + 10 * row as i32);
-                shown = shown.and(
-                    Text::with_baseline(line, at, text_style, Baseline::Top)
-                        .draw(&mut display)
-                        .map(|_| ()),
-                );
+                shown =
+                    shown.and(Text::with_baseline(line, at, text_style, Baseline::Top).draw(&mut display));
             }
             if shown.is_err() {
                 label_errors = label_errors.saturating_add(1);
-            }
-            if label_errors > 0 {
-                let mut count = heapless::String::<40>::new();
-                if write!(count, "{label_errors} labels failed").is_ok() {
-                    let at = Point::new(2, 228);
-                    if Text::with_baseline(&count, at, text_style, Baseline::Top)
-                        .draw(&mut display)
-                        .is_err()
-                    {
-                        label_errors = label_errors.saturating_add(1);
-                    }
-                }
             }
             angle = (angle + STEP) % (2.0 * core::f32::consts::PI);
         }

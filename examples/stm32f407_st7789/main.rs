@@ -1,8 +1,9 @@
 //! A real board: an STM32F407 (STM32F4DISCOVERY, or any F405/F407 board with an 8 MHz
 //! crystal) driving a 240×240 ST7789 SPI LCD through `mipidsi`. Renders `scenes/lab.toml`
 //! at 240×240 (its camera, size replaced), then orbits the camera around the look-at
-//! point, 5° per frame, and prints each frame's time (render + SPI transfer, measured
-//! with the DWT cycle counter) in the top-left corner.
+//! point, 5° per frame, and prints each frame's rate and time (render + SPI transfer,
+//! measured with the DWT cycle counter) in the top-left corner, or why the frame was not
+//! drawn.
 //!
 //! ```sh
 //! cargo build --release --example stm32f407_st7789 --target thumbv7em-none-eabihf
@@ -41,7 +42,7 @@ mod fw {
     use embedded_graphics::prelude::*;
     use embedded_graphics::text::{Baseline, Text};
     use embedded_hal_bus::spi::ExclusiveDevice;
-    use embedded_raytracer::{Camera, Render, Vec3};
+    use embedded_raytracer::{Camera, CameraError, FrameError, Render, Vec3};
     use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
     use panic_halt as _;
     use stm32f4xx_hal::{
@@ -53,6 +54,13 @@ mod fw {
     };
 
     use crate::scenes;
+
+    /// Why a frame was not drawn.
+    enum Refused {
+        Camera(CameraError),
+        Frame(FrameError),
+        Display,
+    }
 
     /// The orbit's step per frame (5°).
     const STEP: f32 = 5.0 * (core::f32::consts::PI / 180.0);
@@ -112,6 +120,8 @@ mod fw {
             .background_color(Rgb565::BLACK)
             .build();
         let mut angle = 0.0f32;
+        // Labels the display did not take.
+        let mut label_errors = 0u32;
         loop {
             // Orbit the lab camera's eye around the look-at point (about +y).
             let (s, c) = (libm::sinf(angle), libm::cosf(angle));
@@ -119,27 +129,55 @@ mod fw {
                 lab.look_at + Vec3::new(c * offset.x + s * offset.z, offset.y, c * offset.z - s * offset.x);
             let start = DWT::cycle_count();
             // Rgb888 → Rgb565 inferred from the display. An error is shown, not
-            // discarded: a camera the kernel refuses, or a display that failed a write.
-            let mut label = heapless::String::<40>::new();
+            // discarded: a camera the kernel refuses, a frame it cannot draw exactly
+            // (`check`: `draw` would leave the last frame on the screen), or a display
+            // that failed a write.
+            let mut label = heapless::String::<200>::new();
             let drawn = match Camera::new(eye, lab.look_at, lab.up, lab.fov_y, size) {
-                Ok(camera) => Render::new(&scenes::LAB, &camera)
-                    .draw(&mut display)
-                    .map_err(|_| "display write failed"),
-                Err(_) => Err("camera refused"),
+                Ok(camera) => {
+                    let render = Render::new(&scenes::LAB, &camera);
+                    match render.check() {
+                        Ok(()) => render.draw(&mut display).map_err(|_| Refused::Display),
+                        Err(e) => Err(Refused::Frame(e)),
+                    }
+                }
+                Err(e) => Err(Refused::Camera(e)),
             };
             let cycles = DWT::cycle_count().wrapping_sub(start);
-            let _ = match drawn {
+            let tenths = u64::from(sysclk_hz) * 10 / u64::from(cycles.max(1));
+            let written = match drawn {
                 Ok(()) => write!(
                     label,
-                    "frame {} ms",
+                    "{}.{} fps {} ms",
+                    tenths / 10,
+                    tenths % 10,
                     u64::from(cycles) * 1000 / u64::from(sysclk_hz)
                 ),
-                Err(why) => write!(label, "error: {why}"),
+                Err(Refused::Camera(e)) => write!(label, "camera: {e}"),
+                Err(Refused::Frame(e)) => write!(label, "{e}"),
+                Err(Refused::Display) => write!(label, "display write failed"),
             };
-            // The label is drawn on the display that just failed, if it did: nothing
-            // else can show it.
-            let _ =
-                Text::with_baseline(&label, Point::new(2, 2), text_style, Baseline::Top).draw(&mut display);
+            let written = written.and_then(|()| match label_errors {
+                0 => Ok(()),
+                n => write!(label, " ({n} labels failed)"),
+            });
+            // 200 bytes hold every message; a longer one would be cut.
+            if written.is_err() {
+                label.truncate(199);
+            }
+            // Lines of 39 characters (FONT_6X10 on 240 pixels; the messages are ASCII),
+            // drawn on the display that just failed, if it did: nothing else can show
+            // it, so a failure here is counted and shown once the display takes it.
+            let mut shown = Ok(Point::zero());
+            for (row, line) in label.as_bytes().chunks(39).enumerate() {
+                let line = core::str::from_utf8(line).unwrap_or("?");
+                let at = Point::new(2, 2 + 10 * row as i32);
+                shown =
+                    shown.and(Text::with_baseline(line, at, text_style, Baseline::Top).draw(&mut display));
+            }
+            if shown.is_err() {
+                label_errors = label_errors.saturating_add(1);
+            }
             angle = (angle + STEP) % (2.0 * core::f32::consts::PI);
         }
     }

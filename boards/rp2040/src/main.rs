@@ -3,7 +3,8 @@
 //! (`split.rs`: core 0 bands 0, 2, …, 10, core 1 bands 1, 3, …, 11), each core into its
 //! own band buffer, and DMA sends the bands to the display in order. The camera orbits
 //! the lab scene's look-at point, 5° per frame, and the top-left corner shows the last
-//! frame's time and how long core 0 waited in it (the RP2040's 1 MHz timer).
+//! frame's rate, time and how long core 0 waited in it (the RP2040's 1 MHz timer) — or,
+//! if a band could not be traced (it goes out dark red), which band and why.
 //!
 //! ```sh
 //! cd boards/rp2040 && cargo build --release
@@ -54,6 +55,7 @@ mod split;
 mod st7789_band;
 
 use core::cell::Cell;
+use core::convert::Infallible;
 use core::fmt::Write as _;
 use core::ops::Range;
 
@@ -62,7 +64,7 @@ use embedded_graphics::prelude::*;
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::SpiBus;
 use embedded_hal_bus::spi::ExclusiveDevice;
-use embedded_raytracer::{Camera, Render};
+use embedded_raytracer::{Camera, IntegerError, Render};
 use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
 use panic_halt as _;
 use rp2040_hal::{
@@ -141,20 +143,28 @@ fn camera_at(angle: f32) -> Option<Camera> {
     orbit::camera_at(angle, Size::new(WIDTH, HEIGHT))
 }
 
-/// Traces `rows` of the lab scene seen by `camera` into `buf` with the integer kernel
-/// alone (`Render::draw_band_integer`: no `f32` render is linked; its rule takes every
-/// frame of the orbit, `lab/tests/lab/rp2040_split.rs`). Without a camera or if the band is
-/// refused, the band is black: the frame still goes out whole, so the display's write
-/// pointer stays in step.
-fn trace(camera: Option<&Camera>, rows: Range<u32>, buf: &mut [WireRgb565]) {
-    let traced = camera.is_some_and(|camera| {
-        Render::new(&scenes::LAB, camera)
-            .draw_band_integer(rows, buf)
-            .is_ok()
+/// The first band of the frame that could not be traced, and why, from either core:
+/// core 0 shows it in the next frame's top line instead of the frame time.
+static REFUSED: Mutex<Cell<Option<(u32, &'static str)>>> = Mutex::new(Cell::new(None));
+
+/// Traces band `k` (`rows`) of the lab scene seen by `camera` into `buf` with the
+/// integer kernel alone (`Render::draw_band_integer`: no `f32` render is linked; its
+/// rule takes every frame of the orbit, `lab/tests/lab/rp2040_split.rs`). Without a
+/// camera or if the band is refused, the band is dark red and `REFUSED` says why.
+fn trace(camera: Option<&Camera>, k: u32, rows: Range<u32>, buf: &mut [WireRgb565]) {
+    let why = match camera.map(|camera| Render::new(&scenes::LAB, camera).draw_band_integer(rows, buf)) {
+        Some(Ok(())) => return,
+        None => "camera refused",
+        Some(Err(IntegerError::Refused)) => "integer kernel refused",
+        Some(Err(_)) => "band rows or buffer wrong",
+    };
+    buf.fill(WireRgb565::REFUSED);
+    critical_section::with(|cs| {
+        let first = REFUSED.borrow(cs);
+        if first.get().is_none() {
+            first.set(Some((k, why)));
+        }
     });
-    if !traced {
-        buf.fill(WireRgb565::BLACK);
-    }
 }
 
 /// Waits for the FIFO word `want` from the other core: the hand-off protocol keeps
@@ -190,7 +200,7 @@ fn core1(mut buf: Band) -> ! {
     loop {
         let camera = camera_at(angle);
         for (k, band_rows) in split::core_bands(1, HEIGHT, BAND_ROWS) {
-            trace(camera.as_ref(), band_rows, &mut buf[..]);
+            trace(camera.as_ref(), k, band_rows, &mut buf[..]);
             put_mailbox(buf);
             fifo.write_blocking(k);
             // Band k has gone out: the buffer is back.
@@ -235,26 +245,26 @@ fn init_clocks(
 }
 
 /// Writes `bytes` without DMA and waits until SPI1 has shifted them out, so that DC or
-/// CS may change.
-fn write_blocking(spi: &mut impl SpiBus<u8>, bytes: &[u8]) {
-    let _ = spi.write(bytes);
-    let _ = spi.flush();
+/// CS may change. The RP2040's SPI and GPIO cannot fail (`Infallible`).
+fn write_blocking(spi: &mut impl SpiBus<u8, Error = Infallible>, bytes: &[u8]) {
+    let Ok(()) = spi.write(bytes);
+    let Ok(()) = spi.flush();
 }
 
 /// Step 1's commands: the address window (the whole panel) and RAMWR; leaves DC high,
 /// ready for the pixels.
-fn start_frame(spi: &mut impl SpiBus<u8>, dc: &mut impl OutputPin) {
+fn start_frame(spi: &mut impl SpiBus<u8, Error = Infallible>, dc: &mut impl OutputPin<Error = Infallible>) {
     let [x1_hi, x1_lo] = ((WIDTH - 1) as u16).to_be_bytes();
     let [y1_hi, y1_lo] = ((HEIGHT - 1) as u16).to_be_bytes();
     for (command, params) in [(CASET, [0, 0, x1_hi, x1_lo]), (RASET, [0, 0, y1_hi, y1_lo])] {
-        let _ = dc.set_low();
+        let Ok(()) = dc.set_low();
         write_blocking(spi, &[command]);
-        let _ = dc.set_high();
+        let Ok(()) = dc.set_high();
         write_blocking(spi, &params);
     }
-    let _ = dc.set_low();
+    let Ok(()) = dc.set_low();
     write_blocking(spi, &[RAMWR]);
-    let _ = dc.set_high();
+    let Ok(()) = dc.set_high();
 }
 
 /// Microseconds as milliseconds with one decimal, for the label.
@@ -351,18 +361,32 @@ fn main() -> ! {
         let camera = camera_at(angle);
 
         // Step 1: band 0 with the last frame's figures, the address window, band 0 out.
-        trace(camera.as_ref(), rows(0), &mut own[..]);
-        if let Some((frame, wait)) = shown {
-            let (frame_ms, frame_tenth) = tenths_of_ms(frame);
-            let (wait_ms, wait_tenth) = tenths_of_ms(wait);
-            let mut label = heapless::String::<40>::new();
-            let _ = write!(
-                label,
-                "frame {frame_ms}.{frame_tenth} ms wait {wait_ms}.{wait_tenth}"
-            );
-            draw_label(&mut own[..], &label);
+        trace(camera.as_ref(), 0, rows(0), &mut own[..]);
+        // The top line: the first band the last frame could not trace and why, or the
+        // last frame's rate, time and core 0's wait.
+        let refused = critical_section::with(|cs| REFUSED.borrow(cs).take());
+        let mut label = heapless::String::<40>::new();
+        let written = match (refused, shown) {
+            (Some((k, why)), _) => write!(label, "band {k}: {why}"),
+            (None, Some((frame, wait))) => {
+                let (frame_ms, frame_tenth) = tenths_of_ms(frame);
+                let (wait_ms, wait_tenth) = tenths_of_ms(wait);
+                let fps_tenths = 10_000_000 / frame.max(1);
+                write!(
+                    label,
+                    "{}.{} fps {frame_ms}.{frame_tenth} ms wait {wait_ms}.{wait_tenth}",
+                    fps_tenths / 10,
+                    fps_tenths % 10
+                )
+            }
+            (None, None) => Ok(()),
+        };
+        // 40 characters fill the line; a longer label is cut.
+        if written.is_err() {
+            label.truncate(39);
         }
-        let _ = cs.set_low();
+        draw_label(&mut own[..], &label);
+        let Ok(()) = cs.set_low();
         start_frame(&mut spi, &mut dc);
         let mut transfer = single_buffer::Config::new(ch, own, spi).start();
         // Core 0's buffer while it is not on the wire.
@@ -381,7 +405,7 @@ fn main() -> ! {
                 let Some(buf) = free.take() else {
                     panic!("core 0's buffer is still on the wire");
                 };
-                trace(camera.as_ref(), rows(k), &mut buf[..]);
+                trace(camera.as_ref(), k, rows(k), &mut buf[..]);
                 single_buffer::Config::new(c, buf, s).start()
             } else {
                 // Band k is core 1's; band k − 1, core 0's, comes back to core 0.
@@ -399,8 +423,8 @@ fn main() -> ! {
         let wait_start = timer.get_counter().ticks();
         let sent;
         (ch, sent, spi) = transfer.wait();
-        let _ = spi.flush();
-        let _ = cs.set_high();
+        let Ok(()) = spi.flush();
+        let Ok(()) = cs.set_high();
         waited += timer.get_counter().ticks().wrapping_sub(wait_start);
         own = if split::core_of(BANDS - 1) == 0 {
             sent

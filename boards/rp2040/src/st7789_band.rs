@@ -26,6 +26,9 @@ pub struct WireRgb565([u8; 2]);
 
 impl WireRgb565 {
     pub const BLACK: Self = Self([0; 2]);
+    /// Dark red (Rgb565 red 16 of 31): a band the kernel refused, not to be taken for
+    /// the black background.
+    pub const REFUSED: Self = Self([0x80, 0x00]);
 
     /// The two bytes as they go on the wire.
     #[allow(dead_code)] // used by band_cycles only

@@ -4,8 +4,9 @@
 //! band buffers, and while DMA2 (stream 3, channel 3: SPI1_TX) sends one band to the
 //! display, the core traces the next into the other. SPI1 runs at 42 MHz (APB2 84 MHz
 //! / 2, the fastest SPI1 clock). The camera orbits the lab scene's look-at point, 5° per
-//! frame, and the top-left corner shows the last frame's time and how much of it the
-//! core spent waiting for the wire (DWT cycle counter).
+//! frame, and the top-left corner shows the last frame's rate, time and how much of it
+//! the core spent waiting for the wire (DWT cycle counter) — or, if a band could not be
+//! traced (it goes out dark red), why.
 //!
 //! ```sh
 //! cargo build --release     # in boards/stm32f407: .cargo/config.toml sets the target
@@ -57,7 +58,9 @@ mod fw {
     };
 
     use crate::scenes;
-    use crate::st7789_band::{draw_label, trace_band, WireRgb565, BANDS, BAND_PIXELS, HEIGHT, WIDTH};
+    use crate::st7789_band::{
+        draw_label, take_refused, trace_band, WireRgb565, BANDS, BAND_PIXELS, HEIGHT, WIDTH,
+    };
 
     /// The orbit's step per frame (5°).
     const STEP: f32 = 5.0 * (core::f32::consts::PI / 180.0);
@@ -91,18 +94,21 @@ mod fw {
 
     /// Step 1 of a frame: the address window (the whole panel) and RAMWR; leaves DC
     /// high, ready for the pixels.
-    fn start_frame(spi: &pac::SPI1, dc: &mut impl embedded_hal::digital::OutputPin) {
+    fn start_frame(
+        spi: &pac::SPI1,
+        dc: &mut impl embedded_hal::digital::OutputPin<Error = core::convert::Infallible>,
+    ) {
         let [x1_hi, x1_lo] = ((WIDTH - 1) as u16).to_be_bytes();
         let [y1_hi, y1_lo] = ((HEIGHT - 1) as u16).to_be_bytes();
         for (command, params) in [(CASET, [0, 0, x1_hi, x1_lo]), (RASET, [0, 0, y1_hi, y1_lo])] {
-            let _ = dc.set_low();
+            let Ok(()) = dc.set_low();
             write_blocking(spi, &[command]);
-            let _ = dc.set_high();
+            let Ok(()) = dc.set_high();
             write_blocking(spi, &params);
         }
-        let _ = dc.set_low();
+        let Ok(()) = dc.set_low();
         write_blocking(spi, &[RAMWR]);
-        let _ = dc.set_high();
+        let Ok(()) = dc.set_high();
     }
 
     /// Cycles as milliseconds with one decimal, for the label.
@@ -246,16 +252,29 @@ mod fw {
             angle = (angle + STEP) % (2.0 * core::f32::consts::PI);
             camera = camera_at(angle);
             trace_band(camera.as_ref(), 0, &mut back[..]);
-            if let Some((frame, wait)) = shown {
-                let (frame_ms, frame_tenth) = tenths_of_ms(frame, sysclk_hz);
-                let (wait_ms, wait_tenth) = tenths_of_ms(wait, sysclk_hz);
-                let mut label = heapless::String::<40>::new();
-                let _ = write!(
-                    label,
-                    "frame {frame_ms}.{frame_tenth} ms wait {wait_ms}.{wait_tenth}"
-                );
-                draw_label(&mut back[..], &label);
+            // The top line: why a band of the last frame could not be traced, or the
+            // last complete frame's rate, time and wait.
+            let mut label = heapless::String::<40>::new();
+            let written = match (take_refused(), shown) {
+                (Some(why), _) => write!(label, "error: {why}"),
+                (None, Some((frame, wait))) => {
+                    let (frame_ms, frame_tenth) = tenths_of_ms(frame, sysclk_hz);
+                    let (wait_ms, wait_tenth) = tenths_of_ms(wait, sysclk_hz);
+                    let fps_tenths = u64::from(sysclk_hz) * 10 / u64::from(frame.max(1));
+                    write!(
+                        label,
+                        "{}.{} fps {frame_ms}.{frame_tenth} ms wait {wait_ms}.{wait_tenth}",
+                        fps_tenths / 10,
+                        fps_tenths % 10
+                    )
+                }
+                (None, None) => Ok(()),
+            };
+            // 40 characters fill the line; a longer label is cut.
+            if written.is_err() {
+                label.truncate(39);
             }
+            draw_label(&mut back[..], &label);
             let wait_start = DWT::cycle_count();
             transfer.wait();
             let sent;

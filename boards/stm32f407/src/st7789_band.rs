@@ -4,12 +4,14 @@
 //! The lab's cycle-estimate firmware (`lab/firmware/examples/band_cycles.rs`) includes
 //! this file, so that what it measures is this board's code.
 
+use core::sync::atomic::{AtomicU8, Ordering};
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyleBuilder};
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::text::{Baseline, Text};
-use embedded_raytracer::{Camera, Render};
+
+use embedded_raytracer::{BandError, Camera, Render};
 
 use crate::scenes;
 
@@ -29,6 +31,9 @@ pub struct WireRgb565([u8; 2]);
 
 impl WireRgb565 {
     pub const BLACK: Self = Self([0; 2]);
+    /// Dark red (Rgb565 red 16 of 31): a band that could not be traced, not to be taken
+    /// for the black background.
+    pub const REFUSED: Self = Self([0x80, 0x00]);
 
     /// The two bytes as they go on the wire.
     #[allow(dead_code)] // used by band_cycles only
@@ -64,16 +69,42 @@ unsafe impl embedded_dma::ReadTarget for WireRgb565 {
     type Word = u8;
 }
 
+/// Why the last band that could not be traced was not (`REFUSED_*`), or 0: set by
+/// `trace_band`, taken by `take_refused`. An atomic byte, so that the band path needs no
+/// critical section (the lab's `band_cycles` firmware compiles this file too).
+static REFUSED: AtomicU8 = AtomicU8::new(0);
+const REFUSED_CAMERA: u8 = 1;
+const REFUSED_FRAME: u8 = 2;
+const REFUSED_BAND: u8 = 3;
+
 /// Traces band `k` (rows `16k .. 16k + 16`) of the lab scene seen by `camera` into
 /// `buf`. Without a camera (its parameters were rejected) or if the band is refused,
-/// the band is black: the frame still goes out whole, so the display's write pointer
-/// stays in step. Not inlined: one copy of the render loop for every call site.
+/// the band is dark red (not the black background) and `take_refused` says why; the
+/// frame still goes out whole, so the display's write pointer stays in step. Not
+/// inlined: one copy of the render loop for every call site.
 #[inline(never)]
 pub fn trace_band(camera: Option<&Camera>, k: u32, buf: &mut [WireRgb565]) {
     let rows = k * BAND_ROWS..(k + 1) * BAND_ROWS;
-    let traced = camera.is_some_and(|camera| Render::new(&scenes::LAB, camera).draw_band(rows, buf).is_ok());
-    if !traced {
-        buf.fill(WireRgb565::BLACK);
+    let why = match camera.map(|camera| Render::new(&scenes::LAB, camera).draw_band(rows, buf)) {
+        Some(Ok(())) => return,
+        None => REFUSED_CAMERA,
+        Some(Err(BandError::Frame(_))) => REFUSED_FRAME,
+        Some(Err(_)) => REFUSED_BAND,
+    };
+    buf.fill(WireRgb565::REFUSED);
+    REFUSED.store(why, Ordering::Relaxed);
+}
+
+/// Why a band since the last call could not be traced, if one could not.
+#[allow(dead_code)] // used by main only, not band_cycles
+pub fn take_refused() -> Option<&'static str> {
+    let why = REFUSED.load(Ordering::Relaxed);
+    REFUSED.store(0, Ordering::Relaxed);
+    match why {
+        REFUSED_CAMERA => Some("camera refused"),
+        REFUSED_FRAME => Some("frame refused (FrameError)"),
+        REFUSED_BAND => Some("band rows or buffer wrong"),
+        _ => None,
     }
 }
 

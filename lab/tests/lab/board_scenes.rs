@@ -11,7 +11,7 @@ mod stm32f407;
 
 /// `scene` and `camera` against the file, bit for bit; the camera's size is the
 /// firmware's to replace.
-fn check(what: &str, scene: &Scene<5>, camera: CameraParams) {
+pub(crate) fn check(what: &str, scene: &Scene<5>, camera: CameraParams) {
     let file = standard::load("lab");
     let spheres = scene.spheres();
     assert_eq!(spheres.len(), file.scene.spheres().len(), "{what}: sphere count");

@@ -10,7 +10,7 @@ use embedded_raytracer::{scene_file, CameraParams, Scene};
 /// `file` loaded as the compiled-in scene's own type (so the loader applies that
 /// type's defaults, e.g. the reflection depth of a type without mirrors) must equal
 /// the compiled-in scene and camera in every bit.
-fn same<const N: usize, const L: usize, const P: usize, const D: usize>(
+pub(crate) fn same<const N: usize, const L: usize, const P: usize, const D: usize>(
     file: &str,
     scene: &Scene<N, L, P, D>,
     camera: CameraParams,

@@ -11,6 +11,7 @@ mod scenes;
 
 mod auto;
 mod band_wire;
+mod board_examples;
 mod board_scenes;
 mod coincident;
 mod common;

@@ -15,7 +15,7 @@ mod split;
 use embedded_raytracer_lab::scenes;
 
 #[path = "../../../boards/rp2040/src/orbit.rs"]
-mod orbit;
+pub(crate) mod orbit;
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;

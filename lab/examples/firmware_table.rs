@@ -1,6 +1,6 @@
-//! Formats a QEMU firmware run (`qemu_cortex_m4`, `qemu_cortex_m0`, `qemu_rv32`) as the
-//! README's Markdown tables: instructions per pixel for every method on every standard
-//! scene at 240×240, the stack of a render, and a frame-rate estimate.
+//! Formats a QEMU firmware run (`qemu_cortex_m4`, `qemu_cortex_m33`, `qemu_cortex_m0`,
+//! `qemu_rv32`) as the README's Markdown tables: instructions per pixel for every method
+//! on every standard scene at 240×240, the stack of a render, and a frame-rate estimate.
 //!
 //! ```sh
 //! cargo run --example firmware_table -- [QEMU-OUTPUT]   # default: lab/data/qemu_cortex_m4.txt
@@ -10,12 +10,14 @@
 //!
 //! Without `--estimate CHIP MHZ` the estimate is the STM32F405/407's at 168 MHz.
 //! If the run measured the scenes with lights, a floor and mirrors (`shadows`,
-//! `mirrors`: the Cortex-M4F's), also their table: instructions per pixel and stack of
-//! each render, and with `--cycles FILE` (the estimates `.ci/cycles --update` stores)
-//! the default method's estimated cycles per pixel and the frame rates they imply at
+//! `mirrors`: the Cortex-M4F's and Cortex-M33's), also their table: instructions per
+//! pixel and stack of each render, and with `--cycles FILE` (the Cortex-M4 estimates
+//! `.ci/cycles --update` stores) the default method's estimated cycles per pixel and
+//! the frame rates they imply at
 //! 168 MHz with an ST7789 on SPI at 42 MHz, blocking and overlapped. An estimate is
 //! used only if its hash equals the run's (the same pixels, so the same kernel).
-//! `.ci/firmware` and `.ci/firmware-nofpu` run QEMU and then this on the fresh output.
+//! `.ci/firmware`, `.ci/firmware-m33` and `.ci/firmware-nofpu` run QEMU and then this on
+//! the fresh output.
 
 use embedded_raytracer_lab::qemu_output;
 
@@ -266,6 +268,23 @@ fn main() -> ExitCode {
 /// estimated cycles per pixel and frame rates where `cycles` has its estimate.
 fn feature_table(output: &QemuOutput, cycles: &[CycleEstimate]) {
     let default = Method::TARGET_DEFAULT.to_string();
+    if cycles.is_empty() {
+        // No cycle estimates (a chip the cycle model does not cover): the measured
+        // instructions and stack only.
+        println!(
+            "\nThe scenes with lights, a floor and mirrors at 240×240 (`PixelHash` sink included), \
+             `lab` for scale:\n"
+        );
+        println!("| scene | render | instructions/pixel | stack (B) |");
+        println!("|---|---|---:|---:|");
+        for (scene, label) in feature_rows(&default) {
+            if let Some(e) = output.get(scene, &label) {
+                let mark = if label == default { " (default)" } else { "" };
+                println!("| {scene} | `{label}`{mark} | {:.1} | {} |", e.ipp(), e.stack);
+            }
+        }
+        return;
+    }
     println!(
         "\nThe scenes with lights, a floor and mirrors at 240×240 (`PixelHash` sink included), \
          `lab` for scale. Estimated cycles (`bash .ci/cycles --update`, the default method only) and \
@@ -279,12 +298,7 @@ fn feature_table(output: &QemuOutput, cycles: &[CycleEstimate]) {
     );
     println!("|---|---|---:|---:|---:|---:|---:|");
     let mut stale = Vec::new();
-    let rows = std::iter::once(("lab", default.clone())).chain(FEATURE_SCENES.iter().flat_map(|&scene| {
-        scenes::FEATURE_RENDERS
-            .iter()
-            .map(move |(method, suffix, _)| (scene, format!("{method}{suffix}")))
-    }));
-    for (scene, label) in rows {
+    for (scene, label) in feature_rows(&default) {
         let Some(e) = output.get(scene, &label) else {
             continue;
         };
@@ -320,4 +334,14 @@ fn feature_table(output: &QemuOutput, cycles: &[CycleEstimate]) {
             stale.join(", ")
         );
     }
+}
+
+/// The rows of the feature table: `lab`'s default for scale, then every render of
+/// `scenes::FEATURE_RENDERS` on each scene with features, as `(scene, label)`.
+fn feature_rows(default: &str) -> impl Iterator<Item = (&'static str, String)> {
+    std::iter::once(("lab", default.to_string())).chain(FEATURE_SCENES.iter().flat_map(|&scene| {
+        scenes::FEATURE_RENDERS
+            .iter()
+            .map(move |(method, suffix, _)| (scene, format!("{method}{suffix}")))
+    }))
 }

@@ -1,5 +1,5 @@
-//! Parser for the output of the QEMU firmware examples (`qemu_cortex_m4`,
-//! `qemu_cortex_m0`, `qemu_rv32`; the line format is `lab/firmware/examples/common/measure.rs`'s).
+//! Parser for the output of the QEMU firmware examples (`qemu_cortex_m4`, also as
+//! `qemu_cortex_m33`, `qemu_cortex_m0`, `qemu_rv32`; the line format is `lab/firmware/examples/common/measure.rs`'s).
 //! Shared, through `#[path]`, by `lab/tests/lab/firmware_hashes.rs` (which compares the hashes
 //! with the host's) and `lab/examples/firmware_table.rs` (which formats the README's
 //! tables).

@@ -15,19 +15,19 @@
 //! (exit 1) if the camera cannot be built or the bands do not cover the whole image.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
-#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[cfg(all(target_os = "none", target_abi = "eabihf", not(armv8m_main)))]
 #[path = "../../src/scenes.rs"]
 mod scenes;
 
-#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[cfg(all(target_os = "none", target_abi = "eabihf", not(armv8m_main)))]
 #[path = "../../../boards/stm32f407/src/st7789_band.rs"]
 mod st7789_band;
 
-#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[cfg(all(target_os = "none", target_abi = "eabihf", not(armv8m_main)))]
 #[path = "common/cycle_region.rs"]
 mod cycle_region;
 
-#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[cfg(all(target_os = "none", target_abi = "eabihf", not(armv8m_main)))]
 mod fw {
     use cortex_m_rt::entry;
     use cortex_m_semihosting::{debug, hprintln};
@@ -110,10 +110,10 @@ mod fw {
     }
 }
 
-#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+#[cfg(all(target_os = "none", not(all(target_abi = "eabihf", not(armv8m_main)))))]
 #[path = "common/wrong_target.rs"]
 mod wrong_target;
-#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+#[cfg(all(target_os = "none", not(all(target_abi = "eabihf", not(armv8m_main)))))]
 wrong_target::firmware_for!("band_cycles", "thumbv7em-none-eabihf");
 
 #[cfg(not(target_os = "none"))]

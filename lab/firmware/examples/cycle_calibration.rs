@@ -17,11 +17,11 @@
 //! `N − 1` times, 1 + P, then not taken, 1); see [`looped`].
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
-#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[cfg(all(target_os = "none", target_abi = "eabihf", not(armv8m_main)))]
 #[path = "common/cycle_region.rs"]
 mod cycle_region;
 
-#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[cfg(all(target_os = "none", target_abi = "eabihf", not(armv8m_main)))]
 mod fw {
     use core::arch::asm;
     use core::ptr::addr_of_mut;
@@ -271,10 +271,10 @@ mod fw {
     }
 }
 
-#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+#[cfg(all(target_os = "none", not(all(target_abi = "eabihf", not(armv8m_main)))))]
 #[path = "common/wrong_target.rs"]
 mod wrong_target;
-#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+#[cfg(all(target_os = "none", not(all(target_abi = "eabihf", not(armv8m_main)))))]
 wrong_target::firmware_for!("cycle_calibration", "thumbv7em-none-eabihf");
 
 #[cfg(not(target_os = "none"))]

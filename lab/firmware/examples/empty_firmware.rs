@@ -1,5 +1,5 @@
 //! The smallest firmware of this crate's build: the runtime's reset handler, the vector
-//! table (the STM32F407's on thumbv7em, cortex-m-rt's own on the Cortex-M0, riscv-rt's
+//! table (the STM32F407's on thumbv7em, cortex-m-rt's own on the Cortex-M0 and Cortex-M33, riscv-rt's
 //! trap entry on RV32) and an idle loop — no kernel. Its section sizes are the baseline
 //! subtracted from `no_panic`'s to get the kernel's flash footprint (`.ci/firmware` and
 //! `.ci/firmware-nofpu` print both).
@@ -20,8 +20,8 @@ mod fw {
     #[cfg(target_arch = "riscv32")]
     use riscv_rt::entry;
     // The PAC's vector table: cortex-m-rt's `device` feature (turned on by the
-    // stm32f4 dev-dependency on hard-float ARM) requires it.
-    #[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
+    // stm32f4 dependency of thumbv7em-none-eabihf) requires it.
+    #[cfg(all(target_arch = "arm", target_abi = "eabihf", not(armv8m_main)))]
     use stm32f4xx_hal as _;
 
     #[entry]

@@ -45,8 +45,8 @@ mod fw {
     #[cfg(target_arch = "riscv32")]
     use riscv_semihosting::{debug, nr, syscall1};
     // The PAC's vector table: cortex-m-rt's `device` feature (turned on by the stm32f4
-    // dev-dependency on hard-float ARM) requires it.
-    #[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
+    // dependency of thumbv7em-none-eabihf) requires it.
+    #[cfg(all(target_arch = "arm", target_abi = "eabihf", not(armv8m_main)))]
     use stm32f4xx_hal as _;
 
     use crate::scenes;

@@ -36,7 +36,8 @@ mod fw {
     use embedded_raytracer_lab::hash::PixelHash;
     use panic_never as _;
     // The PAC's vector table: cortex-m-rt's `device` feature (turned on by the stm32f4
-    // dev-dependency on hard-float ARM) requires it.
+    // dependency of thumbv7em-none-eabihf) requires it.
+    #[cfg(not(armv8m_main))]
     use stm32f4xx_hal as _;
 
     use crate::scenes;

@@ -33,15 +33,15 @@
 //! No SysTick interrupt runs, so no exception lands inside a region.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
-#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[cfg(all(target_os = "none", target_abi = "eabihf", not(armv8m_main)))]
 #[path = "../../src/scenes.rs"]
 mod scenes;
 
-#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[cfg(all(target_os = "none", target_abi = "eabihf", not(armv8m_main)))]
 #[path = "common/cycle_region.rs"]
 mod cycle_region;
 
-#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[cfg(all(target_os = "none", target_abi = "eabihf", not(armv8m_main)))]
 mod fw {
     use cortex_m_rt::entry;
     use cortex_m_semihosting::{debug, hprintln, syscall};
@@ -329,10 +329,10 @@ mod fw {
     }
 }
 
-#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+#[cfg(all(target_os = "none", not(all(target_abi = "eabihf", not(armv8m_main)))))]
 #[path = "common/wrong_target.rs"]
 mod wrong_target;
-#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+#[cfg(all(target_os = "none", not(all(target_abi = "eabihf", not(armv8m_main)))))]
 wrong_target::firmware_for!("qemu_cycles", "thumbv7em-none-eabihf");
 
 #[cfg(not(target_os = "none"))]

@@ -15,17 +15,17 @@
 //! firmware that does not use anti-aliasing is built.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
-#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[cfg(all(target_os = "none", target_abi = "eabihf", not(armv8m_main)))]
 #[path = "common/cortex_m.rs"]
 mod cortex_m_platform;
-#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[cfg(all(target_os = "none", target_abi = "eabihf", not(armv8m_main)))]
 #[path = "common/measure.rs"]
 mod measure;
-#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[cfg(all(target_os = "none", target_abi = "eabihf", not(armv8m_main)))]
 #[path = "../../src/scenes.rs"]
 mod scenes;
 
-#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[cfg(all(target_os = "none", target_abi = "eabihf", not(armv8m_main)))]
 mod fw {
     use cortex_m_rt::entry;
     use panic_semihosting as _;
@@ -50,10 +50,10 @@ mod fw {
     }
 }
 
-#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+#[cfg(all(target_os = "none", not(all(target_abi = "eabihf", not(armv8m_main)))))]
 #[path = "common/wrong_target.rs"]
 mod wrong_target;
-#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+#[cfg(all(target_os = "none", not(all(target_abi = "eabihf", not(armv8m_main)))))]
 wrong_target::firmware_for!("qemu_sampling", "thumbv7em-none-eabihf");
 
 #[cfg(not(target_os = "none"))]

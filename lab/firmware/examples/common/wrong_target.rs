@@ -11,8 +11,8 @@ macro_rules! firmware_for {
     ($name:literal, $target:literal) => {
         use panic_halt as _;
         // The PAC's vector table: cortex-m-rt's `device` feature (turned on by the
-        // stm32f4 dev-dependency on hard-float ARM) requires it.
-        #[cfg(all(target_arch = "arm", target_abi = "eabihf"))]
+        // stm32f4 dependency of thumbv7em-none-eabihf) requires it.
+        #[cfg(all(target_arch = "arm", target_abi = "eabihf", not(armv8m_main)))]
         use stm32f4xx_hal as _;
 
         #[cfg(target_arch = "arm")]

@@ -15,9 +15,10 @@
 //!    camera, the method, sampling, options and offset, the target's bounding box, the
 //!    background and settings, every light and plane, the number of spheres, the
 //!    frame's [`Scale`] and whether it left far spheres out, the features frame's ties
-//!    (a lamp on a surface, coincident objects), and the arithmetic (the integer
-//!    kernel's own per-frame rule and quantisation are not compared: a frame it draws
-//!    is drawn whole when anything changed).
+//!    (a lamp on a surface, coincident objects); for the integer kernel, its
+//!    per-frame rule's decision and quantisation (pixel unit, focal length, shade
+//!    shift, length unit) — its spheres' regions are then the cuts its rows are culled
+//!    with.
 //! 2. **Each sphere whose bits changed** (`-0.0` and `0.0` differ): its old and its new
 //!    silhouette. With lights and shadows, also the old and new shadow silhouettes it
 //!    casts on the first plane under each light (as the features frame culls its shadow
@@ -49,7 +50,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
-use crate::camera::span::{Margin, Silhouette, ViewCone};
+use crate::camera::span::{IntCut, Margin, Silhouette, ViewCone};
 use crate::camera::{Camera, CameraParams};
 use crate::error::{BandError, FrameError};
 use crate::math::vec3::Vec3;
@@ -285,6 +286,15 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         let camera = render.camera();
         let size = camera.size();
         let scene = render.scene();
+        let features = Scene::<N, L, P, D>::FEATURES;
+        let integer = render.method().arithmetic == Arithmetic::Integer
+            && !features
+            && render.sampling() == Sampling::Center;
+        if integer {
+            if let Some(plan) = self.plan_integer(render, target, offset) {
+                return plan;
+            }
+        }
         let new = dispatch(
             render.method(),
             Probe {
@@ -323,23 +333,13 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             Ok((s, c, _, _)) if s.0.to_bits() == scale.0.to_bits() && c == culled => {}
             _ => return full,
         }
-        let features = Scene::<N, L, P, D>::FEATURES;
         let changed = |k: usize| match (shown.scene.spheres().get(k), scene.spheres().get(k)) {
             (Some(a), Some(b)) => !same_sphere(a, b),
             _ => true,
         };
         let any_changed = (0..scene.spheres().len()).any(changed);
-        if any_changed {
-            if render.method().arithmetic == Arithmetic::Integer
-                && !features
-                && render.sampling() == Sampling::Center
-            {
-                // The integer kernel's quantisation is frame-wide and not compared.
-                return full;
-            }
-            if features && !lit::same_ties(&shown.scene, scene, camera.eye()) {
-                return full;
-            }
+        if any_changed && features && !lit::same_ties(&shown.scene, scene, camera.eye()) {
+            return full;
         }
         let pad = match render.sampling() {
             Sampling::Center => 0,
@@ -412,6 +412,59 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
     }
 }
 
+impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental<N, L, P, D> {
+    /// The rule for a frame the integer kernel can draw: its frame-wide quantisation
+    /// equal in both frames, and each changed sphere's old and new cut (the columns
+    /// its rows are culled to). `None` where neither frame is the integer kernel's (the
+    /// `f32` rule then applies).
+    fn plan_integer<C>(
+        &self,
+        render: &Render<'_, N, C, L, P, D>,
+        target: Rectangle,
+        offset: Point,
+    ) -> Option<Changes> {
+        let (camera, scene, options) = (render.camera(), render.scene(), render.options());
+        let size = camera.size();
+        let full = Some(Changes::full(size));
+        let mut plan = Changes::empty(size);
+        let mut ok = true;
+        let new_key = crate::integer::regions::<N>(scene.spheres(), camera, options, |_| false, |_, _| {});
+        let Some(shown) = &self.shown else {
+            return new_key.and(full);
+        };
+        if !(same_params(&shown.params, camera.params())
+            && shown.method == render.method()
+            && shown.sampling == render.sampling()
+            && same_options(options, shown.options)
+            && shown.offset == offset
+            && shown.target == target
+            && same_frame_wide(&shown.scene, scene))
+        {
+            return new_key.and(full);
+        }
+        let changed = |k: usize| match (shown.scene.spheres().get(k), scene.spheres().get(k)) {
+            (Some(a), Some(b)) => !same_sphere(a, b),
+            _ => true,
+        };
+        let mut add = |rows: (u32, u32), cut| ok &= plan.push(Some(Region::Int { rows, cut }));
+        let old_key = crate::integer::regions::<N>(shown.scene.spheres(), camera, options, changed, &mut add);
+        match (old_key, new_key) {
+            (None, None) => return None,
+            (Some(a), Some(b)) if a == b => {}
+            _ => return full,
+        }
+        let _ = crate::integer::regions::<N>(scene.spheres(), camera, options, changed, &mut add);
+        if let Some(stale) = self.stale {
+            ok &= plan.push(Some(Region::Rect(stale)));
+        }
+        if !ok {
+            return full;
+        }
+        plan.merge();
+        Some(plan)
+    }
+}
+
 /// The frame-wide inputs a probe of the method's strategy types reports: the frame's
 /// scale and whether it left far spheres out, the test's margin and the stepping's
 /// error bound (what each silhouette is enlarged by).
@@ -477,6 +530,8 @@ enum Region {
         reach: (f32, f32),
         pad: u32,
     },
+    /// A sphere's rows and the integer kernel's cut of them.
+    Int { rows: (u32, u32), cut: IntCut },
     /// A rectangle of the image.
     Rect(Rectangle),
 }
@@ -500,6 +555,9 @@ impl Region {
                 let (y0, y1) = (r.top_left.y as u32, r.top_left.y as u32 + r.size.height);
                 (y0 <= j && j < y1).then_some((r.top_left.x as u32, r.top_left.x as u32 + r.size.width))
             }
+            Region::Int { rows, cut } => (rows.0 <= j && j < rows.1)
+                .then(|| cut.row_span(j, width))
+                .flatten(),
             Region::Ellipse { sil, pad: 0, .. } => sil.row_span(j, 0, width),
             Region::Ellipse { sil, reach, pad } => {
                 // A pixel's rays (and, with `pad`, its neighbours') lie within
@@ -520,6 +578,13 @@ impl Region {
     fn rows(&self, height: u32) -> (u32, u32) {
         match *self {
             Region::Rect(r) => (r.top_left.y as u32, r.top_left.y as u32 + r.size.height),
+            Region::Int { rows, cut } => {
+                if cut == IntCut::All {
+                    (0, height)
+                } else {
+                    (rows.0.min(height), rows.1.min(height))
+                }
+            }
             Region::Ellipse { sil, pad, .. } => {
                 let (a, b) = sil.rows(height);
                 if pad == 0 || a >= b {

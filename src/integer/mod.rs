@@ -258,6 +258,28 @@ pub(crate) fn render<const N: usize, K: RowSink>(
     }
 }
 
+/// The integer kernel's frame-wide quantisation of `scene` seen by `camera` — the pixel
+/// unit, focal length, shade shift and length unit — or `None` where its per-frame rule
+/// does not take the frame; and, for each sphere `pick` selects, the rows and the cut
+/// its rows are culled with, passed to `f`. What an incremental frame compares and
+/// re-traces; one buffer of `N` spheres, as the render's own.
+pub(crate) fn regions<const N: usize>(
+    scene: &[Sphere],
+    camera: &Camera,
+    options: Options,
+    pick: impl Fn(usize) -> bool,
+    mut f: impl FnMut((u32, u32), IntCut),
+) -> Option<[i32; 4]> {
+    let mut buf: Vec<IntSphere, N> = Vec::new();
+    let plan = plan(scene, camera, options, buf.as_mut_view())?;
+    for s in &buf {
+        if pick(s.index) {
+            f(s.rows, s.cut);
+        }
+    }
+    Some([plan.k as i32, plan.f, plan.p as i32, plan.e])
+}
+
 impl<'a> IntFrame<'a> {
     /// The per-frame rule and the integer picture: `Err(Bounds)` where the integer
     /// kernel's bounds (module docs) do not keep every silhouette within 1/16 pixel and

@@ -1,0 +1,251 @@
+//! Measurement firmware for animated scenes drawn with incremental frames: one cycle of
+//! `scenes/bounce.toml` (lit, shadowed, the default method) and of
+//! `scenes/circling.toml` (Lab #1 spheres, the integer kernel), each frame drawn through
+//! `Incremental` onto a 240×240 `Rgb565` frame buffer (115,200 B: it fits the
+//! emulated STM32F405's 128 KiB and the AN505's), which stands for the display's own
+//! memory. Runs on the Cortex-M4F (QEMU `netduinoplus2`) and the Cortex-M33
+//! (`mps2-an505`).
+//!
+//! One line per frame:
+//!
+//! ```text
+//! anim bounce frame 3 traced 5120 sent 4210 windows 96 bytes 9476 instr 3456789 full_instr 39000000 first 0
+//! ```
+//!
+//! - `traced`, `sent`, `windows`: `FrameStats` (pixels in the strips the render traced,
+//!   pixels sent, runs they were sent in);
+//! - `bytes`: what an ST7789 on SPI would be sent: 2 bytes a pixel and 11 a window
+//!   (column and row address commands, memory write);
+//! - `instr`: instructions of the incremental frame, the frame buffer's stores included;
+//! - `full_instr`: instructions of the same frame drawn whole (`Render::draw`) into the
+//!   same frame buffer, the baseline of the same run.
+//!
+//! Then per sequence a `setup` line (an incremental frame whose only change is one
+//! pixel: the comparison of scenes, the plan and one strip's frame set-up) and a
+//! `check` line: the frame buffer's hash after the sequence and the hash of the last
+//! frame's full render (`PixelHash` over the `Rgb565` colours in row order), which must
+//! be equal, and equal to the host's (`lab/tests/lab/firmware_hashes.rs`).
+#![cfg_attr(target_os = "none", no_std, no_main)]
+
+#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[path = "common/cortex_m.rs"]
+mod cortex_m_platform;
+#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[path = "common/measure.rs"]
+#[allow(dead_code)]
+mod measure;
+#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+#[path = "../../src/scenes.rs"]
+#[allow(dead_code)]
+mod scenes;
+
+#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+mod fw {
+    use core::convert::Infallible;
+
+    use cortex_m_rt::entry;
+    use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+    use embedded_graphics::prelude::*;
+    use embedded_graphics::primitives::Rectangle;
+    use embedded_raytracer::motion::Animation;
+    use embedded_raytracer::{CameraParams, Incremental, Method, Render, Scene};
+    use embedded_raytracer_lab::hash::PixelHash;
+    use panic_semihosting as _;
+    #[cfg(not(armv8m_main))]
+    use stm32f4xx_hal as _;
+
+    use crate::cortex_m_platform::{abort, CortexM};
+    use crate::measure::{Platform, Run};
+    use crate::scenes;
+
+    #[cfg(not(armv8m_main))]
+    const CHIP: (&str, u64) = ("qemu_cortex_m4", 168_000_000);
+    #[cfg(armv8m_main)]
+    const CHIP: (&str, u64) = ("qemu_cortex_m33", 20_000_000);
+
+    const W: u32 = 240;
+    const H: u32 = 240;
+
+    /// The display's memory (its first `px.len() / W` rows: one row stands for a
+    /// display whose contents are not kept, at the same cost a pixel), and what an SPI
+    /// link to it would carry.
+    struct Display<'a> {
+        px: &'a mut [Rgb565],
+        bytes: u64,
+    }
+
+    impl Display<'_> {
+        fn start(&self, p: Point) -> usize {
+            let rows = (self.px.len() as u32 / W).max(1);
+            ((p.y as u32 % rows) * W + p.x as u32) as usize
+        }
+    }
+
+    impl OriginDimensions for Display<'_> {
+        fn size(&self) -> Size {
+            Size::new(W, H)
+        }
+    }
+
+    impl DrawTarget for Display<'_> {
+        type Color = Rgb565;
+        type Error = Infallible;
+        fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, pixels: I) -> Result<(), Infallible> {
+            for Pixel(p, c) in pixels {
+                let i = self.start(p);
+                if let Some(slot) = self.px.get_mut(i) {
+                    *slot = c;
+                }
+            }
+            Ok(())
+        }
+        /// One window: its commands, then its pixels stored in row order (every area
+        /// the kernel sends is one row within the display).
+        fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(&mut self, area: &Rectangle, colors: I) -> Result<(), Infallible> {
+            let start = self.start(area.top_left);
+            let n = (area.size.width * area.size.height) as usize;
+            self.bytes += 11 + 2 * n as u64;
+            if let Some(out) = self.px.get_mut(start..start + n) {
+                for (slot, c) in out.iter_mut().zip(colors) {
+                    *slot = c;
+                }
+            }
+            Ok(())
+        }
+    }
+
+    /// `Rgb565` colours hashed as the host hashes them: widened to `Rgb888`.
+    struct Hash565(PixelHash);
+
+    impl OriginDimensions for Hash565 {
+        fn size(&self) -> Size {
+            Size::new(W, H)
+        }
+    }
+
+    impl DrawTarget for Hash565 {
+        type Color = Rgb565;
+        type Error = Infallible;
+        fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, pixels: I) -> Result<(), Infallible> {
+            self.0
+                .draw_iter(pixels.into_iter().map(|Pixel(p, c)| Pixel(p, Rgb888::from(c))))
+        }
+    }
+
+    /// One cycle of `animation` drawn incrementally, one line a frame.
+    fn sequence<P: Platform, const N: usize, const L: usize, const PL: usize, const D: usize, const M: usize>(
+        run: &mut Run<P>,
+        fb: &mut [Rgb565],
+        name: &str,
+        base: &Scene<N, L, PL, D>,
+        params: CameraParams,
+        animation: &Animation<M>,
+        method: Method,
+    ) -> bool {
+        let mut scene = base.clone();
+        let mut at = params;
+        let mut shown: Incremental<N, L, PL, D> = Incremental::new();
+        let mut row = [Rgb565::BLACK; W as usize];
+        let mut ok = true;
+        for frame in 0..=animation.frames() {
+            if animation.apply_frame(base, &params, frame, &mut scene, &mut at).is_err() {
+                return false;
+            }
+            let Ok(camera) = at.build() else { return false };
+            let render = Render::new(&scene, &camera).with_method(method);
+            let mut display = Display { px: &mut *fb, bytes: 0 };
+            let mut stats = None;
+            let instr = run.timed(|| stats = shown.draw(&render, &mut display).ok());
+            let Some(stats) = stats else { return false };
+            let bytes = display.bytes;
+            ok &= stats.refused.is_none();
+            // The same frame drawn whole, each row stored as the display stores it: the
+            // baseline.
+            let mut whole = Display { px: &mut row[..], bytes: 0 };
+            let full_instr = run.timed(|| {
+                let _ = render.draw(&mut whole);
+            });
+            run.platform.print(format_args!(
+                "anim {} frame {} traced {} sent {} windows {} bytes {} instr {} full_instr {} first {}",
+                name,
+                frame,
+                stats.traced,
+                stats.sent,
+                stats.windows,
+                bytes,
+                instr,
+                full_instr,
+                u8::from(stats.full)
+            ));
+        }
+        // The plan and one strip's set-up: a frame whose only change is one pixel.
+        shown.invalidate_area(Rectangle::new(Point::new(0, 0), Size::new(1, 1)));
+        let Ok(camera) = at.build() else { return false };
+        let render = Render::new(&scene, &camera).with_method(method);
+        let mut display = Display { px: &mut *fb, bytes: 0 };
+        let setup = run.timed(|| {
+            let _ = shown.draw(&render, &mut display);
+        });
+        run.platform.print(format_args!("setup {} instr {}", name, setup));
+        // The display against the last frame's full render.
+        let mut shown_hash = Hash565(PixelHash::new(Size::new(W, H)));
+        let _ = shown_hash.fill_contiguous(&Rectangle::new(Point::zero(), Size::new(W, H)), fb.iter().copied());
+        let mut full_hash = Hash565(PixelHash::new(Size::new(W, H)));
+        let _ = render.draw(&mut full_hash);
+        let equal = shown_hash.0.hash() == full_hash.0.hash();
+        run.platform.print(format_args!(
+            "check {} display {:#018x} full {:#018x} {}",
+            name,
+            shown_hash.0.hash(),
+            full_hash.0.hash(),
+            if equal { "equal" } else { "DIFFER" }
+        ));
+        ok && equal
+    }
+
+    #[entry]
+    fn main() -> ! {
+        let Some(platform) = CortexM::start(CHIP.0, CHIP.1) else {
+            abort("core peripherals already taken");
+        };
+        let mut run = Run::start(platform);
+        let Some(fb) = cortex_m::singleton!(: [Rgb565; (W * H) as usize] = [Rgb565::BLACK; (W * H) as usize]) else {
+            abort("frame buffer already taken");
+        };
+        let bounce = sequence(
+            &mut run,
+            fb,
+            "bounce",
+            &scenes::BOUNCE,
+            scenes::BOUNCE_CAMERA.with_size(Size::new(W, H)),
+            &scenes::BOUNCE_ANIMATION,
+            Method::TARGET_DEFAULT,
+        );
+        fb.fill(Rgb565::BLACK);
+        let circling = sequence(
+            &mut run,
+            fb,
+            "circling",
+            &scenes::CIRCLING,
+            scenes::CIRCLING_CAMERA.with_size(Size::new(W, H)),
+            &scenes::CIRCLING_ANIMATION,
+            Method::INTEGER,
+        );
+        if !(bounce && circling) {
+            run.platform.print(format_args!("FAIL an animated sequence"));
+            run.platform.exit(false);
+        }
+        run.finish()
+    }
+}
+
+#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+#[path = "common/wrong_target.rs"]
+mod wrong_target;
+#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+wrong_target::firmware_for!("qemu_animation", "thumbv7em-none-eabihf");
+
+#[cfg(not(target_os = "none"))]
+fn main() {
+    println!("qemu_animation is firmware: cargo run --release --example qemu_animation --target thumbv7em-none-eabihf");
+}

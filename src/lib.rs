@@ -145,6 +145,7 @@ pub mod incremental; // frames that re-trace and re-send only what changed
 mod integer; // the integer kernel for chips without an FPU
 pub mod math; // square roots, `Vec3`, the limits every bound is stated in
 mod method; // the method vocabulary, its one dispatch, stepping, sphere tests, single-ray queries
+pub mod motion; // scenes that move: circling, bouncing, the camera orbiting; time from the frame number
 mod output; // rows into targets (sinks) and the ordered dither
 mod render; // `Render`: the public renderer, where the method is matched
 mod sampling; // anti-aliasing: one ray per pixel, grids, adaptive

@@ -46,6 +46,36 @@
 //! # specular, shininess and reflect as for spheres
 //! ```
 //!
+//! A scene may move ([`motion`](crate::motion)): each `[[motion]]` table moves one
+//! sphere or the camera, in file order, and `[animation]` says how it is played:
+//!
+//! ```toml
+//! [animation]                   # optional
+//! fps = 25                      # optional, default 25, > 0
+//! frames = 50                   # optional, default one loop of the longest period
+//!
+//! [[motion]]
+//! kind = "circle"               # sphere[0] circles `center` in its horizontal plane
+//! sphere = 0                    # the sphere's index, from 0 in file order
+//! center = [0.0, 0.5, 0.0]
+//! radius = 1.5
+//! period = 4.0                  # seconds a turn, > 0
+//! phase = 0.25                  # optional, turns along at t = 0, default 0
+//!
+//! [[motion]]
+//! kind = "bounce"               # up `height` and back every `period` seconds
+//! sphere = 1
+//! height = 1.2
+//! period = 1.0
+//!
+//! [[motion]]
+//! kind = "orbit"                # the camera orbits its look_at about `up`
+//! period = 10.0
+//! ```
+//!
+//! At most [`MAX_MOTIONS`] motions; a field another kind takes is refused rather than
+//! ignored (`motion[1].center: a bounce has no center`).
+//!
 //! The scene type's capacities are the loader's limits: [`parse`]`::<N, L, P, D>` reads
 //! at most `N` spheres, `L` lights and `P` planes (each counted while parsing, so a huge
 //! file is refused at entry `N + 1`) and accepts `reflect > 0` only if `D ≥ 1`.
@@ -88,6 +118,7 @@ use serde::Deserialize;
 use crate::camera::{Camera, CameraParams};
 use crate::error::{CameraError, LightError, PlaneError, SceneError, SphereError};
 use crate::math::vec3::Vec3;
+use crate::motion::{Animation, Bounce, Circle, Motion, Orbit, DEFAULT_FPS};
 use crate::scene::light::Light;
 use crate::scene::material::Material;
 use crate::scene::plane::Plane;
@@ -98,6 +129,10 @@ use crate::scene::{Scene, Settings};
 /// spheres, is 5,351 bytes).
 pub const MAX_FILE_SIZE: u64 = 1 << 20;
 
+/// The most `[[motion]]` tables a scene file may have: the capacity of
+/// [`SceneFile::animation`].
+pub const MAX_MOTIONS: usize = 8;
+
 /// A loaded scene file: the scene (with capacities `N` spheres, `L` lights, `P`
 /// planes, reflection depth `D`) and its camera.
 #[derive(Clone, Debug)]
@@ -106,6 +141,9 @@ pub struct SceneFile<const N: usize, const L: usize = 0, const P: usize = 0, con
     pub scene: Scene<N, L, P, D>,
     /// The validated camera.
     pub camera: Camera,
+    /// The file's motions (none if it has no `[[motion]]`), frame rate and frames,
+    /// checked against the scene: every sphere a motion names is in it.
+    pub animation: Animation<MAX_MOTIONS>,
 }
 
 impl<const N: usize, const L: usize, const P: usize, const D: usize> SceneFile<N, L, P, D> {
@@ -136,6 +174,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> SceneFile<N
         Some(SceneFile {
             scene,
             camera: self.camera,
+            animation: self.animation.clone(),
         })
     }
 }
@@ -195,6 +234,67 @@ struct RawScene<const N: usize, const L: usize, const P: usize> {
     light: Vec<RawLight>,
     #[serde(default, deserialize_with = "capped::<_, RawPlane, P>")]
     plane: Vec<RawPlane>,
+    #[serde(default, deserialize_with = "capped::<_, RawMotion, MAX_MOTIONS>")]
+    motion: Vec<RawMotion>,
+    animation: Option<RawAnimation>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawAnimation {
+    fps: Option<F32>,
+    frames: Option<Int<u32>>,
+}
+
+/// A motion's `kind`: `"circle"`, `"bounce"` or `"orbit"`.
+#[derive(Clone, Copy)]
+enum MotionKind {
+    Circle,
+    Bounce,
+    Orbit,
+}
+
+impl MotionKind {
+    const fn name(self) -> &'static str {
+        match self {
+            MotionKind::Circle => "circle",
+            MotionKind::Bounce => "bounce",
+            MotionKind::Orbit => "orbit",
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for MotionKind {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct KindVisitor;
+        impl Visitor<'_> for KindVisitor {
+            type Value = MotionKind;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("\"circle\", \"bounce\" or \"orbit\"")
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<MotionKind, E> {
+                match v {
+                    "circle" => Ok(MotionKind::Circle),
+                    "bounce" => Ok(MotionKind::Bounce),
+                    "orbit" => Ok(MotionKind::Orbit),
+                    _ => Err(E::invalid_value(Unexpected::Str(v), &self)),
+                }
+            }
+        }
+        d.deserialize_any(KindVisitor)
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMotion {
+    kind: MotionKind,
+    sphere: Option<Int<u32>>,
+    center: Option<Exact<F32, 3>>,
+    radius: Option<F32>,
+    period: F32,
+    phase: Option<F32>,
+    height: Option<F32>,
 }
 
 #[derive(Deserialize)]
@@ -300,6 +400,10 @@ impl Noun for RawLight {
 
 impl Noun for RawPlane {
     const NOUN: &'static str = "plane";
+}
+
+impl Noun for RawMotion {
+    const NOUN: &'static str = "motion";
 }
 
 fn vec3(v: &Exact<F32, 3>) -> Vec3 {
@@ -597,7 +701,97 @@ pub fn parse<const N: usize, const L: usize, const P: usize, const D: usize>(
             .push_plane(plane)
             .map_err(|e| refused(format!("plane[{k}]"), e))?;
     }
-    Ok(SceneFile { scene, camera })
+    let animation = animation(&raw, scene.spheres().len())?;
+    Ok(SceneFile {
+        scene,
+        camera,
+        animation,
+    })
+}
+
+/// The checked animation of a file with `spheres` spheres: its motions in file order,
+/// the frame rate (default [`DEFAULT_FPS`]) and the frames (default one loop of the
+/// longest period, [`Animation::frames_for`]).
+fn animation<const N: usize, const L: usize, const P: usize>(
+    raw: &RawScene<N, L, P>,
+    spheres: usize,
+) -> Result<Animation<MAX_MOTIONS>, SceneFileError> {
+    let mut animation = Animation::new();
+    let mut longest = 0.0f32;
+    for (k, m) in raw.motion.iter().enumerate() {
+        let field = |key: &str, reason: &dyn ToString| {
+            SceneFileError::field(format!("motion[{k}].{key}"), reason.to_string())
+        };
+        let m = motion(m, spheres).map_err(|(key, reason)| field(key, &reason))?;
+        animation.push(m).map_err(|e| field(e.file_key(), &e))?;
+        longest = longest.max(m.period());
+    }
+    let timing = raw.animation.as_ref();
+    let fps = timing.and_then(|a| a.fps.as_ref()).map_or(DEFAULT_FPS, |f| f.0);
+    let frames = timing
+        .and_then(|a| a.frames.as_ref())
+        .map_or_else(|| Animation::<MAX_MOTIONS>::frames_for(longest, fps), |f| f.0);
+    let animation = animation.with_fps(fps).with_frames(frames);
+    animation
+        .check()
+        .map_err(|e| SceneFileError::field(format!("animation.{}", e.file_key()), e))?;
+    Ok(animation)
+}
+
+/// A motion from its table, or the key to blame and why. The `kind` decides which keys
+/// it takes; a key of another kind is refused rather than ignored.
+fn motion(m: &RawMotion, spheres: usize) -> Result<Motion, (&'static str, String)> {
+    let kind = m.kind.name();
+    let takes: &[&str] = match m.kind {
+        MotionKind::Circle => &["sphere", "center", "radius", "phase"],
+        MotionKind::Bounce => &["sphere", "height"],
+        MotionKind::Orbit => &[],
+    };
+    let given = [
+        ("sphere", m.sphere.is_some()),
+        ("center", m.center.is_some()),
+        ("radius", m.radius.is_some()),
+        ("phase", m.phase.is_some()),
+        ("height", m.height.is_some()),
+    ];
+    for (key, present) in given {
+        if present && !takes.contains(&key) {
+            let a = if kind == "orbit" { "an" } else { "a" };
+            return Err((key, format!("{a} {kind} has no {key}")));
+        }
+        if !present && takes.contains(&key) && key != "phase" {
+            return Err((key, format!("a {kind} needs a `{key}`")));
+        }
+    }
+    let sphere = match &m.sphere {
+        Some(s) => {
+            let k = s.0 as usize;
+            if k >= spheres {
+                return Err((
+                    "sphere",
+                    format!(
+                        "the scene has no sphere[{k}] (it has {})",
+                        count_of(spheres, "sphere")
+                    ),
+                ));
+            }
+            k
+        }
+        None => 0,
+    };
+    let number = |v: &Option<F32>| v.as_ref().map_or(0.0, |v| v.0);
+    let motion = match m.kind {
+        MotionKind::Circle => Motion::Circle(Circle::new(
+            sphere,
+            m.center.as_ref().map_or(Vec3::ZERO, vec3),
+            number(&m.radius),
+            m.period.0,
+            number(&m.phase),
+        )),
+        MotionKind::Bounce => Motion::Bounce(Bounce::new(sphere, number(&m.height), m.period.0)),
+        MotionKind::Orbit => Motion::Orbit(Orbit::new(m.period.0)),
+    };
+    motion.check(0).map_err(|e| (e.file_key(), e.to_string()))
 }
 
 /// A checked light from its table, or the key to blame and why. The `type` decides
@@ -742,7 +936,7 @@ fn camera_field(e: CameraError, size: Size) -> String {
 /// inline array of tables whose values are arrays (`sphere = [{ center = [0, 0, 0] }]`).
 const MAX_NESTING: usize = 3;
 
-/// Twice what a scene of `n` spheres, `l` lights and `p` planes can hold, counted as
+/// Twice what a scene of `n` spheres, `l` lights, `p` planes and [`MAX_MOTIONS`] motions can hold, counted as
 /// the pre-check counts: keys (`=`) and separators (`,`), and table headers. A plane,
 /// the largest object, has 8 keys and 4 arrays of 3 (8 separators, a trailing comma
 /// each: 4 more), 20 in all; the camera 7 keys and 3 arrays, the top level 4 keys and 1
@@ -750,7 +944,8 @@ const MAX_NESTING: usize = 3;
 /// parser, whose error names the count ("more than 2 spheres"); one far over it, which
 /// could only be hostile, is refused without being parsed.
 fn scene_bounds(n: usize, l: usize, p: usize) -> (usize, usize) {
-    let objects = n.saturating_add(l).saturating_add(p);
+    // Motions count as objects: a motion table is smaller than a plane's.
+    let objects = n.saturating_add(l).saturating_add(p).saturating_add(MAX_MOTIONS);
     let entries = objects.saturating_mul(40).saturating_add(256);
     // One header per object and `[camera]`, twice, and a margin.
     let headers = objects.saturating_mul(2).saturating_add(16);
@@ -1718,6 +1913,193 @@ reflect = 0.1
                 .replace("reflect = 0.1", "reflect = 0"),
         )
         .unwrap();
+    }
+
+    /// Two spheres, one circling and one bouncing, and the camera orbiting.
+    const MOVING: &str = r#"
+[camera]
+eye = [0.0, 2.0, 8.0]
+look_at = [0.0, 0.0, 0.0]
+fov_y_deg = 40.0
+width = 32
+height = 24
+[animation]
+fps = 30
+frames = 90
+[[sphere]]
+center = [0.0, 1.0, 0.0]
+radius = 1.0
+color = [255, 64, 64]
+[[sphere]]
+center = [2.0, 0.5, 0.0]
+radius = 0.5
+color = [64, 64, 255]
+[[motion]]
+kind = "circle"
+sphere = 1
+center = [0.0, 0.5, 0.0]
+radius = 2.0
+period = 3.0
+phase = 0.25
+[[motion]]
+kind = "bounce"
+sphere = 0
+height = 1.5
+period = 1.0
+[[motion]]
+kind = "orbit"
+period = 10.0
+"#;
+
+    #[test]
+    fn parses_motions_and_timing() {
+        let f = parse::<2, 0, 0, 0>(MOVING).unwrap();
+        let want: Animation<3> = Animation::from_array([
+            Motion::Circle(Circle::new(1, Vec3::new(0.0, 0.5, 0.0), 2.0, 3.0, 0.25)),
+            Motion::Bounce(Bounce::new(0, 1.5, 1.0)),
+            Motion::Orbit(Orbit::new(10.0)),
+        ]);
+        assert_eq!(f.animation.motions(), want.motions());
+        assert_eq!((f.animation.fps(), f.animation.frames()), (30.0, 90));
+        // Defaults: 25 frames a second, one loop of the longest period (10 s).
+        let f = parse::<2, 0, 0, 0>(&MOVING.replace("fps = 30\nframes = 90\n", "")).unwrap();
+        assert_eq!((f.animation.fps(), f.animation.frames()), (25.0, 250));
+        // A file without motion: still, one frame.
+        let f = parse::<4, 0, 0, 0>(GOOD).unwrap();
+        assert!(f.animation.is_still());
+        assert_eq!(f.animation.frames(), 1);
+        assert_eq!(f.spheres_only().unwrap().animation, f.animation);
+    }
+
+    #[test]
+    fn every_motion_field_has_its_error() {
+        for (from, to, field, reason) in [
+            (
+                "period = 3.0",
+                "period = 0",
+                "motion[0].period",
+                "period must be a finite number greater than 0",
+            ),
+            (
+                "period = 1.0",
+                "period = -1.0",
+                "motion[1].period",
+                "greater than 0",
+            ),
+            (
+                "period = 10.0",
+                "period = nan",
+                "motion[2].period",
+                "greater than 0",
+            ),
+            ("period = 10.0\n", "", "motion[2]", "missing field `period`"),
+            (
+                "sphere = 1",
+                "sphere = 2",
+                "motion[0].sphere",
+                "the scene has no sphere[2] (it has 2 spheres)",
+            ),
+            (
+                "sphere = 0",
+                "sphere = -1",
+                "motion[1].sphere",
+                "expected an integer",
+            ),
+            (
+                "sphere = 1\n",
+                "",
+                "motion[0].sphere",
+                "a circle needs a `sphere`",
+            ),
+            (
+                "radius = 2.0\n",
+                "",
+                "motion[0].radius",
+                "a circle needs a `radius`",
+            ),
+            (
+                "radius = 2.0",
+                "radius = inf",
+                "motion[0].radius",
+                "radius must be a finite number",
+            ),
+            (
+                "center = [0.0, 0.5, 0.0]",
+                "center = [0.0, 0.5]",
+                "motion[0].center",
+                "expected 3 values, found 2",
+            ),
+            (
+                "center = [0.0, 0.5, 0.0]",
+                "center = [0.0, nan, 0.0]",
+                "motion[0].center",
+                "finite",
+            ),
+            ("phase = 0.25", "phase = inf", "motion[0].phase", "finite"),
+            (
+                "height = 1.5",
+                "height = 1.5\nradius = 1",
+                "motion[1].radius",
+                "a bounce has no radius",
+            ),
+            (
+                "height = 1.5\n",
+                "",
+                "motion[1].height",
+                "a bounce needs a `height`",
+            ),
+            (
+                "period = 10.0",
+                "period = 10.0\nsphere = 0",
+                "motion[2].sphere",
+                "an orbit has no sphere",
+            ),
+            (
+                "kind = \"orbit\"",
+                "kind = \"spin\"",
+                "motion[2].kind",
+                "expected \"circle\", \"bounce\" or \"orbit\"",
+            ),
+            (
+                "period = 10.0",
+                "period = 10.0\nspeed = 2",
+                "motion[2].speed",
+                "unknown field `speed`",
+            ),
+            (
+                "fps = 30",
+                "fps = 0",
+                "animation.fps",
+                "fps must be a finite number greater than 0",
+            ),
+            (
+                "frames = 90",
+                "frames = 0",
+                "animation.frames",
+                "frames must be at least 1",
+            ),
+            ("frames = 90", "frames = 1.5", "animation.frames", "invalid type"),
+            (
+                "frames = 90",
+                "loop = true",
+                "animation.loop",
+                "unknown field `loop`",
+            ),
+        ] {
+            assert_eq!(MOVING.matches(from).count(), 1, "{from}");
+            let e = match parse::<2, 0, 0, 0>(&MOVING.replace(from, to)) {
+                Ok(_) => panic!("accepted: {to}"),
+                Err(e) => e,
+            };
+            assert_eq!(e.field.as_deref(), Some(field), "{to}: {e}");
+            assert!(e.reason.contains(reason), "{to}: {e}");
+        }
+        // More than MAX_MOTIONS motions.
+        let orbit = "[[motion]]\nkind = \"orbit\"\nperiod = 1.0\n";
+        let e = parse::<4, 0, 0, 0>(&format!("{GOOD}{}", orbit.repeat(MAX_MOTIONS + 1))).unwrap_err();
+        assert_eq!(e.field.as_deref(), Some("motion"));
+        assert_eq!(e.reason, "more than 8 motions: at most 8 are supported");
+        parse::<4, 0, 0, 0>(&format!("{GOOD}{}", orbit.repeat(MAX_MOTIONS))).unwrap();
     }
 
     /// The light count is checked while the array is read, like the spheres'.

@@ -1,6 +1,7 @@
 //! The standard scenes (`scenes/*.toml`) as `static`s for firmware, which has no file
-//! system: the five Lab #1 scenes ([`for_each`]) and the two with lights, a floor and
-//! mirrors ([`for_each_feature`]), each in the scene type of its exact capacities. The
+//! system: the five Lab #1 scenes ([`for_each`]), the two with lights, a floor and
+//! mirrors ([`for_each_feature`]) and the two that move, with their motion as
+//! constants ([`for_each_moving`]), each in the scene type of its exact capacities. The
 //! numbers are copied from the TOML files; `lab/tests/lab/firmware_scenes.rs` loads every file
 //! and fails if any number here differs, so the two cannot diverge.
 //!
@@ -9,6 +10,7 @@
 #![allow(dead_code)]
 
 use embedded_graphics::{geometry::Size, pixelcolor::Rgb888};
+use embedded_raytracer::motion::{Animation, Bounce, Circle, Motion};
 use embedded_raytracer::{
     CameraParams, Light, Material, Method, Options, Plane, Scene, SecondaryOrigin, Settings, Sphere, Vec3,
 };
@@ -264,6 +266,89 @@ pub const MIRRORS_CAMERA: CameraParams = camera(
     45.0,
     [240, 240],
 );
+
+/// `scenes/bounce.toml` at rest: 3 spheres (the ball resting on the floor), 1 light, 1
+/// plane, no mirror.
+pub static BOUNCE: Scene<3, 1, 1, 0> = Scene::from_arrays(
+    [
+        lit_sphere([0.0, 0.7, 0.5], 0.7, [230, 60, 50], [0.6, 48.0, 0.0]),
+        lit_sphere([-1.9, 0.6, -0.6], 0.6, [60, 200, 90], [0.3, 16.0, 0.0]),
+        lit_sphere([1.9, 0.45, -0.2], 0.45, [70, 110, 240], [0.8, 96.0, 0.0]),
+    ],
+    [Light::directional(vec3([0.5, -1.6, -0.7]), 0.85)],
+    [
+        Plane::new(vec3([0.0, 0.0, 0.0]), vec3([0.0, 1.0, 0.0]), rgb([225, 225, 215]))
+            .with_checker(rgb([70, 70, 80]), 1.0),
+    ],
+    Rgb888::new(24, 34, 56),
+    Settings::DEFAULT
+        .with_ambient(0.15)
+        .with_max_depth(0)
+        .with_shadows(true),
+);
+/// The camera of `scenes/bounce.toml`.
+pub const BOUNCE_CAMERA: CameraParams = camera(
+    [0.0, 3.0, 7.0],
+    [0.0, 1.0, 0.0],
+    [0.0, 1.0, 0.0],
+    45.0,
+    [240, 240],
+);
+/// The motion of `scenes/bounce.toml`: the ball bounces 1.5 high every 1.2 s; 30
+/// frames at 25 a second.
+pub const BOUNCE_ANIMATION: Animation<1> = Animation::from_array([Motion::Bounce(Bounce::new(0, 1.5, 1.2))])
+    .with_fps(25.0)
+    .with_frames(30);
+
+/// `scenes/circling.toml` at rest: Lab #1 spheres only.
+pub static CIRCLING: Scene<3> = Scene::from_array(
+    [
+        sphere([0.0, 0.0, 1.2], 0.8, [255, 64, 64]),
+        sphere([0.0, 0.0, -1.2], 0.6, [64, 64, 255]),
+        sphere([2.6, 0.3, 0.0], 0.35, [255, 255, 64]),
+    ],
+    Rgb888::new(0, 0, 0),
+);
+/// The camera of `scenes/circling.toml`.
+pub const CIRCLING_CAMERA: CameraParams = camera(
+    [0.0, 3.0, 8.0],
+    [0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    45.0,
+    [240, 240],
+);
+/// The motion of `scenes/circling.toml`: the red and blue spheres on opposite points of
+/// one circle (a turn in 4 s), the yellow one around both (a turn in 2 s); 100 frames
+/// at 25 a second.
+pub const CIRCLING_ANIMATION: Animation<3> = Animation::from_array([
+    Motion::Circle(Circle::new(0, vec3([0.0, 0.0, 0.0]), 1.2, 4.0, 0.0)),
+    Motion::Circle(Circle::new(1, vec3([0.0, 0.0, 0.0]), 1.2, 4.0, 0.5)),
+    Motion::Circle(Circle::new(2, vec3([0.0, 0.3, 0.0]), 2.6, 2.0, 0.25)),
+])
+.with_fps(25.0)
+.with_frames(100);
+
+/// The standard scenes that move, in the order of [`for_each_moving`].
+pub const MOVING_SCENES: [&str; 2] = ["bounce", "circling"];
+
+/// Work done on each standard scene that moves, whatever its type.
+pub trait EachMovingScene {
+    /// Called once per moving standard scene with its name (the file's stem), the
+    /// scene at rest, its camera and its motion.
+    fn scene<const N: usize, const L: usize, const P: usize, const D: usize, const M: usize>(
+        &mut self,
+        name: &'static str,
+        scene: &'static Scene<N, L, P, D>,
+        camera: CameraParams,
+        animation: &Animation<M>,
+    );
+}
+
+/// Calls `work` on every standard scene that moves ([`MOVING_SCENES`]).
+pub fn for_each_moving(work: &mut impl EachMovingScene) {
+    work.scene("bounce", &BOUNCE, BOUNCE_CAMERA, &BOUNCE_ANIMATION);
+    work.scene("circling", &CIRCLING, CIRCLING_CAMERA, &CIRCLING_ANIMATION);
+}
 
 /// Work done on each standard scene, whatever its type.
 pub trait EachScene {

@@ -26,8 +26,9 @@ pub const MAX_THREADS: usize = 1024;
 /// tables.
 fn usage() -> String {
     format!(
-        "ertrace SCENE.toml [--output OUT.png] [--force] {} [--arithmetic {}] [--secondary convex|epsilon:VALUE] \
-[--sampling center|grid:N|adaptive:N] [--size WxH] [--threads N] [--quiet] (default method {}, sampling {}, secondary {})",
+        "ertrace SCENE.toml... [--output OUT.png] [--output-frames DIR] [--frames N] [--fps F] [--frame K] [--force] {} \
+[--arithmetic {}] [--secondary convex|epsilon:VALUE] [--sampling center|grid:N|adaptive:N] [--size WxH] [--threads N] \
+[--quiet] (default method {}, sampling {}, secondary {})",
         standard::method_flags(),
         Arithmetic::NAMES.join("|"),
         Method::TARGET_DEFAULT,
@@ -41,7 +42,16 @@ Renders a TOML scene file (see scenes/*.toml) to an 8-bit RGB PNG. Spheres alone
 (scenes/lab.toml) are drawn under the Lab #1 headlight; lights, a checkered floor and
 mirrors (scenes/shadows.toml, scenes/mirrors.toml) are drawn when the file has them.
 Bands of rows are traced in parallel (--threads) and written in order: the PNG is the
-same, byte for byte, for every number of threads.";
+same, byte for byte, for every number of threads.
+
+Sequences: several scene files are consecutive frames of one display, and a scene with
+[[motion]] tables (scenes/bounce.toml, scenes/circling.toml) is drawn at the moments
+t = (k - 1)/fps of its frames k = 1, 2, ... (--frames N). A sequence is drawn into one
+frame in memory, each frame incrementally (only the pixels that can differ from the
+frame before are traced), on one thread; --output-frames DIR writes DIR/0001.png,
+DIR/0002.png, ... (each the same bytes as the single-frame PNG of that file or moment),
+--output OUT.png an animated PNG (APNG) of every frame. One line per frame on stderr:
+the frame, the pixels traced and sent, the time (--quiet: none).";
 
 /// The text after the flags: the output rules, the limits and the worst case.
 fn after_help() -> String {
@@ -58,7 +68,9 @@ scene does not load. SIGINT, SIGTERM or SIGHUP remove the unfinished temporary f
 (exit 130, 143, 129).
 
 Limits: the scene file is at most 1 MiB, at most 256 spheres, 8 lights and 8 planes,
-max_depth at most 8, width and height at most 8192.
+8 motions, max_depth at most 8, width and height at most 8192, --frames at most
+{max_frames}. A sequence holds one frame in memory (3 bytes a pixel) and its APNG
+until it is written.
 {worst}
 Worst case measured (docs/cli_worst_case.toml: 8192x8192, 256 spheres all enclosing
 the eye, so none is culled, centre sampling; release build on a shared 2-core AMD EPYC
@@ -69,6 +81,7 @@ memory grows with the width and the threads, not with the height.
 Exit codes: 0 done, 2 bad input or a failed write (one message on stderr), 130/143/129
 interrupted by SIGINT/SIGTERM/SIGHUP (nothing left behind).",
         worst = cost::help_text(),
+        max_frames = MAX_FRAMES,
         warn = cost::WARN_SECONDS,
     )
 }
@@ -85,12 +98,29 @@ interrupted by SIGINT/SIGTERM/SIGHUP (nothing left behind).",
     disable_help_flag = true,
 )]
 pub struct Args {
-    /// The scene file (TOML)
-    #[arg(value_name = "SCENE.toml", value_hint = clap::ValueHint::FilePath)]
-    pub scene: Option<PathBuf>,
-    /// The PNG (default: the scene's name with .png, in the current directory)
+    /// The scene file (TOML); several: the consecutive frames of a sequence
+    #[arg(value_name = "SCENE.toml", num_args = 0.., value_hint = clap::ValueHint::FilePath)]
+    pub scenes: Vec<PathBuf>,
+    /// The PNG (default: the first scene's name with .png, in the current directory); for
+    /// a sequence an animated PNG (APNG) of every frame, written unless only
+    /// --output-frames is given
     #[arg(short, long, value_name = "OUT.png", value_hint = clap::ValueHint::FilePath)]
     pub output: Option<PathBuf>,
+    /// Write every frame of the sequence as DIR/0001.png, DIR/0002.png, ... (DIR is made
+    /// if missing, its parent must exist; other files in it are left alone)
+    #[arg(long, value_name = "DIR", value_hint = clap::ValueHint::DirPath)]
+    pub output_frames: Option<PathBuf>,
+    /// Draw N frames of the scene's motion, at t = 0, 1/F, 2/F, ... seconds (one scene
+    /// file; with --output-frames alone: the file's [animation] frames)
+    #[arg(long, value_name = "N", value_parser = Checked::new(parse_frames, &[]))]
+    pub frames: Option<u32>,
+    /// Frames a second of the motion (default: the file's [animation] fps, else 25)
+    #[arg(long, value_name = "F", value_parser = Checked::new(parse_fps, &[]))]
+    pub fps: Option<f32>,
+    /// Draw frame K of the scene's motion, at t = (K - 1)/F seconds (default 1: its
+    /// start); for several files, each file's frame K
+    #[arg(long, value_name = "K", conflicts_with = "frames", value_parser = Checked::new(parse_frame, &[]))]
+    pub frame: Option<u32>,
     /// Replace an output this user may not write, where its directory lets us: the new
     /// file is renamed over it, so it belongs to whoever ran ertrace (root keeps the old
     /// owner), with the old file's permission bits
@@ -128,7 +158,8 @@ pub struct Args {
     /// PNG is the same for every N
     #[arg(long, value_name = "N", value_parser = Checked::new(parse_threads, &[]))]
     pub threads: Option<usize>,
-    /// No progress bar and no time estimate on stderr (the summary line stays)
+    /// No progress bar, no time estimate and no per-frame lines on stderr (the summary
+    /// line stays)
     #[arg(short, long)]
     pub quiet: bool,
     /// Print the completion script for SHELL to stdout and exit
@@ -264,6 +295,34 @@ fn parse_threads(text: &str) -> Result<usize, String> {
         Ok(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
         _ => Err(format!(
             "expected a number of threads from 1 to {MAX_THREADS}, got `{text}`"
+        )),
+    }
+}
+
+/// The most frames `--frames` takes.
+pub const MAX_FRAMES: u32 = 100_000;
+
+fn parse_frames(text: &str) -> Result<u32, String> {
+    match text.parse::<u32>() {
+        Ok(n) if (1..=MAX_FRAMES).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "expected a number of frames from 1 to {MAX_FRAMES}, got `{text}`"
+        )),
+    }
+}
+
+fn parse_frame(text: &str) -> Result<u32, String> {
+    match text.parse::<u32>() {
+        Ok(k) if k >= 1 => Ok(k),
+        _ => Err(format!("expected a frame number from 1, got `{text}`")),
+    }
+}
+
+fn parse_fps(text: &str) -> Result<f32, String> {
+    match text.parse::<f32>() {
+        Ok(f) if f.is_finite() && f > 0.0 => Ok(f),
+        _ => Err(format!(
+            "expected a positive finite number of frames a second, got `{text}`"
         )),
     }
 }

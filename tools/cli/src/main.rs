@@ -39,6 +39,12 @@
 //! The PNG is streamed in bands of rows ([`png_out`]), traced in parallel and encoded in
 //! order: memory is O(width × threads), not O(width × height), and the bytes are the
 //! same for every number of threads.
+//!
+//! Several scene files, or one scene's motion with `--frames N [--fps F]`, are a
+//! sequence ([`sequence`]): drawn incrementally into one frame in memory, written as
+//! `--output-frames DIR` (`DIR/0001.png`, …, each the bytes of that frame's
+//! single-frame PNG) and/or `--output` as an animated PNG, with one line per frame on
+//! stderr. `--frame K` draws one moment of a scene's motion as a single frame.
 
 use std::fs::{self, OpenOptions};
 use std::io::{self, IsTerminal, Write};
@@ -53,6 +59,7 @@ use embedded_raytracer::{scene_file, FrameError, ObjectRef, Options, Render, Sam
 mod args;
 mod cost;
 mod png_out;
+mod sequence;
 mod signals;
 mod standard;
 use standard::FullSceneFile;
@@ -76,7 +83,10 @@ fn run() -> Result<(), String> {
         clap_complete::generate(shell, &mut args::command(), "ertrace", &mut io::stdout());
         return Ok(());
     }
-    let scene = args.scene.clone().ok_or("no scene file given")?;
+    if sequence::wanted(&args) {
+        return sequence::run(&args);
+    }
+    let scene = args.scenes.first().cloned().ok_or("no scene file given")?;
     let output = match &args.output {
         Some(output) => output.clone(),
         None => {
@@ -94,15 +104,16 @@ fn run() -> Result<(), String> {
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
 
     let file: Box<FullSceneFile> = Box::new(scene_file::load(&scene).map_err(|e| e.to_string())?);
-    let camera = match args.size {
-        None => file.camera,
-        Some(size) => file
-            .camera
-            .params()
-            .with_size(size)
-            .build()
-            .map_err(|e| format!("{}: --size {}x{}: {e}", scene.display(), size.width, size.height))?,
-    };
+    // A scene that moves is drawn at the moment of `--frame` (default its start); a
+    // still one as the file says.
+    let file = sequence::at_frame(
+        &scene,
+        &file,
+        args.size,
+        args.frame.map_or(0, |k| k - 1),
+        args.fps,
+    )?;
+    let camera = file.camera;
     let size = camera.size();
     let destination = destination(&output, &scene, args.force)?;
     // Signals are caught from here on: the temporary file is made below.
@@ -182,6 +193,17 @@ fn write_output<const N: usize, const L: usize, const P: usize, const D: usize>(
 ) -> Result<(Duration, Duration), String> {
     // Before any file is made: a frame the kernel cannot draw exactly is refused whole.
     render.check().map_err(|e| frame_message(scene, e))?;
+    write_with(destination, name, |file| png_out::write(render, job, file))
+}
+
+/// Writes `destination` with `write` (the output rules of the module docs: a regular
+/// file through a temporary file beside it, renamed into place once `write` is done; a
+/// stream written through); `name` is the output as the user gave it, for messages.
+fn write_with<T>(
+    destination: Destination,
+    name: &Path,
+    write: impl FnOnce(&fs::File) -> io::Result<T>,
+) -> Result<T, String> {
     let fail = |e: io::Error| format!("{}: cannot write the PNG: {e}", name.display());
     match destination {
         Destination::File { path, existing } => {
@@ -190,7 +212,7 @@ fn write_output<const N: usize, const L: usize, const P: usize, const D: usize>(
             let temp = temporary_beside(&path, existing.as_ref()).map_err(fail)?;
             *tracked = Some(temp.path().to_path_buf());
             drop(tracked);
-            let times = png_out::write(render, job, temp.as_file()).map_err(fail)?;
+            let times = write(temp.as_file()).map_err(fail)?;
             temp.as_file().sync_all().map_err(fail)?;
             // Rename over the file that was there; a new name must still be free, so a
             // file or link placed there since the checks above is not replaced either.
@@ -208,7 +230,7 @@ fn write_output<const N: usize, const L: usize, const P: usize, const D: usize>(
         }
         Destination::Stream { path } => {
             let stream = OpenOptions::new().write(true).open(&path).map_err(fail)?;
-            png_out::write(render, job, &stream).map_err(fail)
+            write(&stream).map_err(fail)
         }
     }
 }

@@ -43,10 +43,7 @@ pub fn write<const N: usize, const L: usize, const P: usize, const D: usize>(
     let start = Instant::now();
     let size = job.size;
     let mut out = BufWriter::new(out);
-    let mut encoder = png::Encoder::new(&mut out, size.width, size.height);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder.write_header()?;
+    let mut writer = rgb_encoder(&mut out, size).write_header()?;
     let mut encoding = Duration::ZERO;
     {
         let mut stream = writer.stream_writer()?;
@@ -78,6 +75,98 @@ pub fn write<const N: usize, const L: usize, const P: usize, const D: usize>(
     out.flush()?;
     encoding += t.elapsed();
     Ok((start.elapsed().saturating_sub(encoding), encoding))
+}
+
+/// The encoder of every PNG the CLI writes: 8-bit RGB, the crate's default
+/// compression and filter (a still frame of a sequence is the same bytes as the
+/// single-frame render's PNG only if both are encoded alike).
+fn rgb_encoder<W: Write>(out: W, size: Size) -> png::Encoder<'static, W> {
+    let mut encoder = png::Encoder::new(out, size.width, size.height);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder
+}
+
+/// Writes a frame already drawn (`rgb`: 3 bytes a pixel, row-major) as a PNG on `out`,
+/// fed to the encoder in the bands [`write`] feeds it, so the bytes are the ones
+/// [`write`] gives for the same pixels. Returns the time spent encoding and writing.
+pub fn write_frame(size: Size, rgb: &[u8], out: &File) -> io::Result<Duration> {
+    let start = Instant::now();
+    let mut out = BufWriter::new(out);
+    let mut writer = rgb_encoder(&mut out, size).write_header()?;
+    {
+        let mut stream = writer.stream_writer()?;
+        let row = size.width as usize * 3;
+        for k in 0..size.height.div_ceil(BAND) {
+            let rows = band_rows(k, size.height);
+            let band = rgb
+                .get(rows.start as usize * row..rows.end as usize * row)
+                .ok_or_else(|| io::Error::other("the frame is smaller than its size"))?;
+            stream.write_all(band)?;
+        }
+        stream.finish()?;
+    }
+    writer.finish()?;
+    out.flush()?;
+    Ok(start.elapsed())
+}
+
+/// An animated PNG (APNG) assembled in memory frame by frame: every frame the whole
+/// image, shown for `1/fps` s, looping forever.
+pub struct Animated {
+    writer: png::Writer<Shared>,
+    bytes: Shared,
+}
+
+/// The APNG's bytes, shared between the encoder (which owns its writer until it
+/// finishes) and [`Animated::finish`].
+#[derive(Clone, Default)]
+struct Shared(std::rc::Rc<std::cell::RefCell<Vec<u8>>>);
+
+impl Write for Shared {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        self.0.borrow_mut().extend_from_slice(buf);
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        Ok(())
+    }
+}
+
+impl Animated {
+    /// An APNG of `frames` frames of `size` at `fps` frames a second.
+    pub fn new(size: Size, frames: u32, fps: f32) -> io::Result<Self> {
+        let bytes = Shared::default();
+        let mut encoder = rgb_encoder(bytes.clone(), size);
+        encoder.set_animated(frames, 0)?;
+        let (num, den) = frame_delay(fps);
+        encoder.set_frame_delay(num, den)?;
+        Ok(Self {
+            writer: encoder.write_header()?,
+            bytes,
+        })
+    }
+
+    /// Appends the next frame (`rgb`: 3 bytes a pixel, row-major).
+    pub fn push(&mut self, rgb: &[u8]) -> io::Result<()> {
+        self.writer.write_image_data(rgb).map_err(io::Error::other)
+    }
+
+    /// The finished file's bytes (the encoder checks that every frame was given).
+    pub fn finish(self) -> io::Result<Vec<u8>> {
+        self.writer.finish().map_err(io::Error::other)?;
+        Ok(self.bytes.0.take())
+    }
+}
+
+/// The APNG frame delay `num/den` seconds closest to `1/fps`: `1/fps` exactly for a
+/// whole frame rate up to 65,535, otherwise in milliseconds (at least 1).
+fn frame_delay(fps: f32) -> (u16, u16) {
+    if fps.fract() == 0.0 && (1.0..=65535.0).contains(&fps) {
+        return (1, fps as u16);
+    }
+    let ms = (1000.0 / f64::from(fps)).round().clamp(1.0, 65535.0);
+    (ms as u16, 1000)
 }
 
 /// Band `k`'s rows.

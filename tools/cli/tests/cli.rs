@@ -1585,3 +1585,241 @@ fn a_scene_no_frame_can_hold_exits_2_naming_the_object() {
         "a sphere out of view changed the picture"
     );
 }
+
+// --- Sequences: several files, or one scene's motion ---
+
+/// The frames of an APNG, each decoded whole, and the frame count its `acTL` declares.
+fn decode_animated(bytes: &[u8]) -> (u32, Vec<Vec<u8>>) {
+    let mut reader = png::Decoder::new(std::io::Cursor::new(bytes))
+        .read_info()
+        .unwrap();
+    let declared = reader.info().animation_control().unwrap().num_frames;
+    let mut frames = Vec::new();
+    for _ in 0..declared {
+        let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
+        let info = reader.next_frame(&mut pixels).unwrap();
+        let control = reader.info().frame_control().unwrap();
+        assert_eq!(
+            (control.x_offset, control.y_offset, control.width, control.height),
+            (0, 0, info.width, info.height),
+            "every frame is the whole image"
+        );
+        pixels.truncate(info.buffer_size());
+        frames.push(pixels);
+    }
+    (declared, frames)
+}
+
+/// The stderr lines of the frames (`frame k/n: traced …`).
+fn frame_lines(o: &Output) -> Vec<String> {
+    stderr(o)
+        .lines()
+        .filter(|l| l.starts_with("frame "))
+        .map(str::to_string)
+        .collect()
+}
+
+/// Several files are the frames of one display: each frame's PNG is the bytes of that
+/// file's single-frame PNG, through a change of scene type (spheres only, lit, spheres
+/// only) and with the flags the frames share. Nothing else in the directory is touched.
+#[test]
+fn several_files_are_the_frames_of_one_display() {
+    let dir = scratch("file-frames");
+    let frames = dir.join("frames");
+    std::fs::create_dir(&frames).unwrap();
+    std::fs::write(frames.join("notes.txt"), b"keep me").unwrap();
+    let scenes = ["lab", "crowd", "shadows", "shadows", "lab"];
+    let paths: Vec<String> = scenes
+        .iter()
+        .map(|s| {
+            Path::new(ROOT)
+                .join(format!("scenes/{s}.toml"))
+                .display()
+                .to_string()
+        })
+        .collect();
+    for flags in [
+        &["--size", "64x48"][..],
+        &["--size", "48x40", "--sampling", "adaptive:2"],
+    ] {
+        let mut args: Vec<&str> = paths.iter().map(String::as_str).collect();
+        args.extend_from_slice(flags);
+        args.extend_from_slice(&["--output-frames", frames.to_str().unwrap()]);
+        let o = run_in(&dir, &args);
+        assert_rendered(&o);
+        let lines = frame_lines(&o);
+        assert_eq!(lines.len(), scenes.len(), "{}", stderr(&o));
+        assert!(lines[0].starts_with("frame 1/5: traced "), "{}", lines[0]);
+        // The same file again: nothing changed, nothing sent.
+        assert!(lines[3].contains("sent 0 px"), "{}", lines[3]);
+        for (k, path) in paths.iter().enumerate() {
+            let single = dir.join("single.png");
+            let mut args = vec![path.as_str(), "--output", single.to_str().unwrap()];
+            args.extend_from_slice(flags);
+            assert_rendered(&run_in(&dir, &args));
+            let frame = std::fs::read(frames.join(format!("{:04}.png", k + 1))).unwrap();
+            assert!(
+                frame == std::fs::read(&single).unwrap(),
+                "frame {} ({}) differs from its single-frame PNG with {flags:?}",
+                k + 1,
+                scenes[k]
+            );
+        }
+    }
+    assert_eq!(std::fs::read(frames.join("notes.txt")).unwrap(), b"keep me");
+}
+
+/// A scene's motion: `--frames N` writes N frames and an APNG of them; each frame is
+/// the single-frame render of its moment (`--frame k`), the APNG declares N frames and
+/// holds the same pixels; one line a frame on stderr, none with --quiet.
+#[test]
+fn a_moving_scene_draws_its_frames_and_an_apng() {
+    let dir = scratch("motion-frames");
+    for scene in ["bounce", "circling"] {
+        let path = Path::new(ROOT).join(format!("scenes/{scene}.toml"));
+        let anim = dir.join(format!("{scene}.png"));
+        let frames = dir.join(scene);
+        let o = run_in(
+            &dir,
+            &[
+                path.to_str().unwrap(),
+                "--frames",
+                "6",
+                "--fps",
+                "4",
+                "--size",
+                "80x80",
+                "--output",
+                anim.to_str().unwrap(),
+                "--output-frames",
+                frames.to_str().unwrap(),
+            ],
+        );
+        assert_rendered(&o);
+        let lines = frame_lines(&o);
+        assert_eq!(lines.len(), 6, "{}", stderr(&o));
+        assert!(lines[0].contains("(whole frame)"), "{}", lines[0]);
+        let (declared, animated) = decode_animated(&std::fs::read(&anim).unwrap());
+        assert_eq!((declared, animated.len()), (6, 6), "{scene}");
+        for k in 1..=6 {
+            let single = dir.join("single.png");
+            let k_text = k.to_string();
+            assert_rendered(&run_in(
+                &dir,
+                &[
+                    path.to_str().unwrap(),
+                    "--frame",
+                    &k_text,
+                    "--fps",
+                    "4",
+                    "--size",
+                    "80x80",
+                    "--output",
+                    single.to_str().unwrap(),
+                ],
+            ));
+            let single = std::fs::read(&single).unwrap();
+            let frame = std::fs::read(frames.join(format!("{k:04}.png"))).unwrap();
+            assert!(
+                frame == single,
+                "{scene}: frame {k}'s PNG differs from --frame {k}"
+            );
+            let (_, _, pixels) = decode(&single);
+            assert!(
+                animated[k - 1] == pixels,
+                "{scene}: the APNG's frame {k} differs from --frame {k}"
+            );
+        }
+        // The moments differ: the scene moves.
+        assert_ne!(animated[0], animated[1], "{scene}");
+        let quiet = run_in(
+            &dir,
+            &[
+                path.to_str().unwrap(),
+                "--frames",
+                "2",
+                "--size",
+                "32x32",
+                "--quiet",
+                "--output",
+                anim.to_str().unwrap(),
+            ],
+        );
+        assert_rendered(&quiet);
+        assert!(frame_lines(&quiet).is_empty(), "{}", stderr(&quiet));
+    }
+}
+
+/// Bad motion, frame flags or a sequence of mismatched files: exit 2 naming the file,
+/// field and reason, before anything is written: an existing output is kept, no frame
+/// directory is made.
+#[test]
+fn bad_sequences_exit_2_and_write_nothing() {
+    let dir = scratch("bad-sequences");
+    let out = dir.join("keep.png");
+    let sentinel = b"must survive".to_vec();
+    let moving = format!("{GOOD}[[motion]]\nkind = \"bounce\"\nsphere = 0\nheight = 1.0\nperiod = 1.0\n");
+    let good = write(&dir, "moving.toml", &moving);
+    let zero = write(&dir, "zero.toml", &moving.replace("period = 1.0", "period = 0"));
+    let far = write(&dir, "far.toml", &moving.replace("sphere = 0", "sphere = 3"));
+    let wide = write(&dir, "wide.toml", &GOOD.replace("width = 32", "width = 40"));
+    let fps = write(&dir, "fps.toml", &format!("[animation]\nfps = -2\n{GOOD}"));
+    let frames_dir = dir.join("frames");
+    let frames_s = frames_dir.to_str().unwrap();
+    let out_s = out.to_str().unwrap();
+    for (args, expect) in [
+        (
+            vec![zero, "--frames", "3", "--output", out_s],
+            "zero.toml: motion[0].period: period must be",
+        ),
+        (
+            vec![zero, "--output-frames", frames_s],
+            "motion[0].period: period must be a finite number greater than 0",
+        ),
+        (
+            vec![far, "--output", out_s],
+            "motion[0].sphere: the scene has no sphere[3] (it has 1 sphere)",
+        ),
+        (
+            vec![fps, "--frames", "2", "--output", out_s],
+            "animation.fps: fps must be a finite number greater than 0",
+        ),
+        (
+            vec![good, wide, "--output-frames", frames_s],
+            "wide.toml: camera.width/height: 40x24 is not the sequence's 32x24",
+        ),
+        (
+            vec![good, good, "--frames", "2", "--output", out_s],
+            "--frames draws the motion of one scene file",
+        ),
+        (
+            vec![good, "--frames", "0", "--output", out_s],
+            "--frames: expected a number of frames from 1 to",
+        ),
+        (
+            vec![good, "--fps", "0", "--frames", "2", "--output", out_s],
+            "--fps: expected a positive finite number",
+        ),
+        (
+            vec![good, "--frame", "0", "--output", out_s],
+            "--frame: expected a frame number from 1",
+        ),
+        (
+            vec![good, "--frame", "2", "--frames", "2", "--output", out_s],
+            "--frame",
+        ),
+        (
+            vec![good, "--output-frames", out_s],
+            "--output-frames: not a directory",
+        ),
+    ] {
+        std::fs::write(&out, &sentinel).unwrap();
+        let o = run_in(&dir, &args);
+        assert_refused(&o, expect);
+        assert_eq!(std::fs::read(&out).unwrap(), sentinel, "{args:?}: output touched");
+        assert!(!frames_dir.exists(), "{args:?}: frame directory made");
+    }
+    // The period's error names the field and the reason too.
+    let o = run_in(&dir, &[zero, "--frames", "3", "--output", out_s]);
+    assert!(stderr(&o).contains("motion[0].period"), "{}", stderr(&o));
+}

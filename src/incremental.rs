@@ -82,10 +82,12 @@ pub const MAX_REGIONS: usize = 12;
 pub const MERGE_GAP: u32 = 5;
 
 /// A traced rectangle is cut into strips of rows that follow the changed runs; a strip
-/// grows while it traces at most this many pixels outside the runs, about what the
-/// frame's set-up costs a strip in pixels of a lit scene. A tuning constant: any value
-/// draws the same pixels.
-pub const STRIP_SETUP: u32 = 96;
+/// grows while it traces at most this many pixels outside the runs: about what a
+/// strip's own frame set-up costs, in pixels of the frame's kind, as measured on the
+/// Cortex-M4F (`lab/firmware/examples/qemu_animation.rs`'s `setup` lines against the
+/// frames' instructions per traced pixel): `[f32 Lab #1, f32 with features, integer
+/// kernel]`. Tuning constants: any values draw the same pixels.
+pub const STRIP_SETUP: [u32; 3] = [1024, 128, 2048];
 
 /// At most this many strips a frame; more trace each rectangle whole.
 const MAX_STRIPS: usize = 48;
@@ -105,6 +107,8 @@ pub struct FrameStats {
     pub sent: u32,
     /// Runs (one `fill_contiguous` each) they were sent in.
     pub windows: u32,
+    /// Clipped renders (strips) traced: each pays the frame's set-up.
+    pub strips: u32,
     /// The frame could not be drawn exactly ([`Render::check`]): nothing was sent, and
     /// the next frame is drawn whole.
     pub refused: Option<FrameError>,
@@ -220,6 +224,8 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
     ///
     /// The target's. The display's state is then unknown: the next frame is drawn
     /// whole.
+    // Inlined, as `Render::draw` is: with a constant method only its code is linked.
+    #[inline(always)]
     pub fn draw<C, Tg>(
         &mut self,
         render: &Render<'_, N, C, L, P, D>,
@@ -246,6 +252,8 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
     /// them into a band buffer ([`Changes::draw_band`]). The image is at the origin
     /// (bands have no offset). The frame is taken as shown from now on: a caller that
     /// fails to send it calls [`Incremental::invalidate`].
+    // Inlined, as `Render::draw` is: with a constant method only its code is linked.
+    #[inline(always)]
     pub fn update<C>(&mut self, render: &Render<'_, N, C, L, P, D>) -> Changes
     where
         C: PixelColor + From<Rgb888>,
@@ -277,11 +285,15 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         self.stale = None;
     }
 
+    // Inlined, as `Render::draw` is: with a constant method only its code is linked.
+    #[inline(always)]
     fn plan<C>(&self, render: &Render<'_, N, C, L, P, D>, target: Rectangle) -> Changes {
         self.plan_at(render, target, render.offset())
     }
 
     /// The rule (module docs), once per frame.
+    // Inlined, as `Render::draw` is: with a constant method only its code is linked.
+    #[inline(always)]
     fn plan_at<C>(&self, render: &Render<'_, N, C, L, P, D>, target: Rectangle, offset: Point) -> Changes {
         let camera = render.camera();
         let size = camera.size();
@@ -349,7 +361,8 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         let shadows = features && L > 0 && scene.settings().shadows;
         let mirrors = features && scene.max_depth() > 0;
         if any_changed
-            && ((shadows && P > 1) || (mirrors && scene.planes().iter().any(|p| p.material.reflect != 0.0)))
+            && ((shadows && scene.planes().len() > 1)
+                || (mirrors && scene.planes().iter().any(|p| p.material.reflect != 0.0)))
         {
             return full;
         }
@@ -407,6 +420,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         if !ok {
             return full;
         }
+        plan.strip_setup = STRIP_SETUP[usize::from(features)];
         plan.merge();
         plan
     }
@@ -417,6 +431,8 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
     /// equal in both frames, and each changed sphere's old and new cut (the columns
     /// its rows are culled to). `None` where neither frame is the integer kernel's (the
     /// `f32` rule then applies).
+    // Inlined, as `Render::draw` is: with a constant method only its code is linked.
+    #[inline(always)]
     fn plan_integer<C>(
         &self,
         render: &Render<'_, N, C, L, P, D>,
@@ -460,6 +476,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         if !ok {
             return full;
         }
+        plan.strip_setup = STRIP_SETUP[2];
         plan.merge();
         Some(plan)
     }
@@ -606,6 +623,8 @@ pub struct Changes {
     /// The rectangles the render is clipped to: each of `rects` cut into strips of rows
     /// that follow the runs' extent.
     strips: Vec<Rectangle, MAX_STRIPS>,
+    /// The frame kind's [`STRIP_SETUP`].
+    strip_setup: u32,
     refused: Option<FrameError>,
     full: bool,
 }
@@ -617,6 +636,7 @@ impl Changes {
             regions: Vec::new(),
             rects: Vec::new(),
             strips: Vec::new(),
+            strip_setup: 0,
             refused: None,
             full: false,
         }
@@ -702,7 +722,7 @@ impl Changes {
 
     /// Cuts rectangle `r` into strips of rows, each as wide as its rows' runs reach: a
     /// strip grows a row while the pixels it would trace outside the runs stay within
-    /// [`STRIP_SETUP`] (the cost of the frame set-up a new strip pays); a row without a
+    /// the frame kind's [`STRIP_SETUP`] (the cost of the frame set-up a new strip pays); a row without a
     /// run ends it. `false` if the strips do not fit.
     fn cut_strips(&mut self, r: usize) -> bool {
         let Some(&rect) = self.rects.get(r) else {
@@ -736,7 +756,7 @@ impl Changes {
                 (Some((top, a, b, used)), Some((lo, hi))) => {
                     let (na, nb) = (a.min(lo), b.max(hi));
                     let used = used + (hi - lo);
-                    if (nb - na) * (j + 1 - top) - used <= STRIP_SETUP {
+                    if (nb - na) * (j + 1 - top) - used <= self.strip_setup {
                         Some((top, na, nb, used))
                     } else {
                         close(&mut self.strips, (top, a, b, used), j);
@@ -830,6 +850,8 @@ impl Changes {
     /// # Errors
     ///
     /// [`Render::draw_band`]'s.
+    // Inlined, as `Render::draw` is: with a constant method only its code is linked.
+    #[inline(always)]
     pub fn draw_band<C, const N: usize, const L: usize, const P: usize, const D: usize>(
         &self,
         render: &Render<'_, N, C, L, P, D>,
@@ -853,6 +875,8 @@ impl Changes {
         }
     }
 
+    // Inlined, as `Render::draw` is: with a constant method only its code is linked.
+    #[inline(always)]
     fn draw<C, Tg, const N: usize, const L: usize, const P: usize, const D: usize>(
         &self,
         render: &Render<'_, N, C, L, P, D>,
@@ -878,6 +902,7 @@ impl Changes {
                 continue;
             }
             stats.traced += clip.size.width * clip.size.height;
+            stats.strips += 1;
             let mut sink = RunSink {
                 target: &mut *target,
                 changes: self,

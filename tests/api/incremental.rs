@@ -103,8 +103,8 @@ fn motion<const N: usize, const L: usize, const P: usize, const D: usize>(
     let k = ((rng.next() * n as f32) as usize).min(n - 1);
     let mut s = scene.spheres()[k];
     match (rng.next() * 6.0) as u32 {
-        0 => s.center = s.center + rng.vec(0.05),
-        1 => s.center = s.center + rng.vec(1.0),
+        0 => s.center += rng.vec(0.05),
+        1 => s.center += rng.vec(1.0),
         2 => s.radius = rng.range(0.2, 1.0),
         3 => s.color = color(rng),
         4 => s.center.x = if s.center.x == 0.0 { -0.0 } else { 0.0 },

@@ -132,16 +132,28 @@ mod fw {
         }
     }
 
-    /// One cycle of `animation` drawn incrementally, one line a frame.
-    fn sequence<P: Platform, const N: usize, const L: usize, const PL: usize, const D: usize, const M: usize>(
+    /// One cycle of `animation` drawn incrementally, one line a frame. Inlined: the
+    /// method is a constant of each call, so only its code is linked.
+    #[inline(always)]
+    fn sequence<
+        P: Platform,
+        const N: usize,
+        const L: usize,
+        const PL: usize,
+        const D: usize,
+        const M: usize,
+        const INTEGER: bool,
+    >(
         run: &mut Run<P>,
         fb: &mut [Rgb565],
         name: &str,
         base: &Scene<N, L, PL, D>,
         params: CameraParams,
         animation: &Animation<M>,
-        method: Method,
     ) -> bool {
+        // A constant in each instantiation, and the render is made inside each timed
+        // closure: the measured code dispatches on a known method, as a firmware's does.
+        let method = if INTEGER { Method::INTEGER } else { Method::TARGET_DEFAULT };
         let mut scene = base.clone();
         let mut at = params;
         let mut shown: Incremental<N, L, PL, D> = Incremental::new();
@@ -152,10 +164,12 @@ mod fw {
                 return false;
             }
             let Ok(camera) = at.build() else { return false };
-            let render = Render::new(&scene, &camera).with_method(method);
             let mut display = Display { px: &mut *fb, bytes: 0 };
             let mut stats = None;
-            let instr = run.timed(|| stats = shown.draw(&render, &mut display).ok());
+            let instr = run.timed(|| {
+                let render = Render::new(&scene, &camera).with_method(method);
+                stats = shown.draw(&render, &mut display).ok();
+            });
             let Some(stats) = stats else { return false };
             let bytes = display.bytes;
             ok &= stats.refused.is_none();
@@ -163,10 +177,10 @@ mod fw {
             // baseline.
             let mut whole = Display { px: &mut row[..], bytes: 0 };
             let full_instr = run.timed(|| {
-                let _ = render.draw(&mut whole);
+                let _ = Render::new(&scene, &camera).with_method(method).draw(&mut whole);
             });
             run.platform.print(format_args!(
-                "anim {} frame {} traced {} sent {} windows {} bytes {} instr {} full_instr {} first {}",
+                "anim {} frame {} traced {} sent {} windows {} bytes {} instr {} full_instr {} first {} strips {}",
                 name,
                 frame,
                 stats.traced,
@@ -175,7 +189,8 @@ mod fw {
                 bytes,
                 instr,
                 full_instr,
-                u8::from(stats.full)
+                u8::from(stats.full),
+                stats.strips
             ));
         }
         // The plan and one strip's set-up: a frame whose only change is one pixel.
@@ -184,7 +199,7 @@ mod fw {
         let render = Render::new(&scene, &camera).with_method(method);
         let mut display = Display { px: &mut *fb, bytes: 0 };
         let setup = run.timed(|| {
-            let _ = shown.draw(&render, &mut display);
+            let _ = shown.draw(&Render::new(&scene, &camera).with_method(method), &mut display);
         });
         run.platform.print(format_args!("setup {} instr {}", name, setup));
         // The display against the last frame's full render.
@@ -212,24 +227,22 @@ mod fw {
         let Some(fb) = cortex_m::singleton!(: [Rgb565; (W * H) as usize] = [Rgb565::BLACK; (W * H) as usize]) else {
             abort("frame buffer already taken");
         };
-        let bounce = sequence(
+        let bounce = sequence::<_, 3, 1, 1, 0, 1, false>(
             &mut run,
             fb,
             "bounce",
             &scenes::BOUNCE,
             scenes::BOUNCE_CAMERA.with_size(Size::new(W, H)),
             &scenes::BOUNCE_ANIMATION,
-            Method::TARGET_DEFAULT,
         );
         fb.fill(Rgb565::BLACK);
-        let circling = sequence(
+        let circling = sequence::<_, 3, 0, 0, 0, 3, true>(
             &mut run,
             fb,
             "circling",
             &scenes::CIRCLING,
             scenes::CIRCLING_CAMERA.with_size(Size::new(W, H)),
             &scenes::CIRCLING_ANIMATION,
-            Method::INTEGER,
         );
         if !(bounce && circling) {
             run.platform.print(format_args!("FAIL an animated sequence"));

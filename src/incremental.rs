@@ -420,7 +420,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         if !ok {
             return full;
         }
-        plan.strip_setup = STRIP_SETUP[usize::from(features)];
+        plan.strip_setup = if features { STRIP_SETUP[1] } else { STRIP_SETUP[0] };
         plan.merge();
         plan
     }

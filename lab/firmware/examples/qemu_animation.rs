@@ -32,11 +32,9 @@
 mod cortex_m_platform;
 #[cfg(all(target_os = "none", target_abi = "eabihf"))]
 #[path = "common/measure.rs"]
-#[allow(dead_code)]
 mod measure;
 #[cfg(all(target_os = "none", target_abi = "eabihf"))]
 #[path = "../../src/scenes.rs"]
-#[allow(dead_code)]
 mod scenes;
 
 #[cfg(all(target_os = "none", target_abi = "eabihf"))]

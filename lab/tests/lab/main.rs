@@ -9,6 +9,7 @@
 #[path = "../../../boards/rp2040/src/scenes.rs"]
 mod scenes;
 
+mod animation;
 mod auto;
 mod band_wire;
 mod board_examples;

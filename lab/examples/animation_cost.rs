@@ -63,6 +63,9 @@ const LAB_ONE_ANIMATION: Animation<1> = Animation::from_array([Motion::Circle(Ci
 .with_fps(25.0)
 .with_frames(50);
 
+/// A table row: its label and the figure it shows of a frame.
+type Row<'a> = (&'a str, &'a dyn Fn(&Frame) -> f64);
+
 /// One frame's counts and median times.
 #[derive(Clone, Copy)]
 struct Frame {
@@ -335,7 +338,7 @@ fn section(all: &[Measured]) -> Result<String, std::fmt::Error> {
         writeln!(md, "Frame 0, then the {} frames after it (min, median, max over them); {whole} of them drawn whole.\n", rest.len())?;
         writeln!(md, "| per frame | frame 0 | min | median | max |")?;
         writeln!(md, "|---|---:|---:|---:|---:|")?;
-        let rows: [(&str, &dyn Fn(&Frame) -> f64); 7] = [
+        let rows: [Row; 7] = [
             ("pixels changed", &|f| f64::from(f.changed)),
             ("pixels traced", &|f| f64::from(f.stats.traced)),
             ("over-trace (traced − changed)", &|f| {

@@ -1773,6 +1773,43 @@ mod tests {
         assert_eq!(clock.rate(), None, "one frame in the last second");
     }
 
+    /// A reload of a scene that moves keeps the paused frame and draws it whole: the
+    /// new file's render of that moment.
+    #[test]
+    fn a_reload_keeps_the_frame_and_draws_it_whole() {
+        let dir = std::env::temp_dir().join(format!("simulator-reload-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("bounce.toml");
+        let text = std::fs::read_to_string(BOUNCE).unwrap();
+        std::fs::write(&path, &text).unwrap();
+        let p = path.to_str().unwrap();
+        let mut app = App::new(&args(p, &["--size", "64x64", "--frame", "5"])).unwrap();
+        app.redraw();
+        app.handle(key(Keycode::PERIOD));
+        app.redraw();
+        assert!(!app.stats.full);
+        std::fs::write(
+            &path,
+            text.replace("color = [230, 60, 50]", "color = [40, 60, 230]"),
+        )
+        .unwrap();
+        let t = SystemTime::UNIX_EPOCH + Duration::from_secs(4_000_000);
+        std::fs::File::options()
+            .write(true)
+            .open(&path)
+            .unwrap()
+            .set_modified(t)
+            .unwrap();
+        app.last_poll = Instant::now() - 2 * POLL;
+        app.poll_file();
+        assert_eq!(app.error, None);
+        assert_eq!(app.clock.frame(), 5);
+        app.redraw();
+        assert!(app.stats.full, "{:?}", app.stats);
+        assert!(image(&app) == full_frame(p, app.size, 5));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
     /// A still scene: no clock, `Space` and the step keys do nothing, every frame is
     /// drawn whole, the status bar shows the orbit.
     #[test]

@@ -7,7 +7,7 @@
 //!     [--display rgb888|rgb565|gray8|gray4|gray4-dither|gray2|gray2-dither|binary|binary-dither] \
 //!     [--size WxH] [--scale N] [--bayer 4|8] [--theme oled-blue|oled-white] \
 //!     [--stepping …] [--sphere-test …] [--sqrt …] [--diff] [--no-overlay] \
-//!     [--screenshot OUT.png [--frames N]]
+//!     [--frame K] [--screenshot OUT.png [--frames N]]
 //! ```
 //!
 //! Keys: ←/→ orbit around the look-at point (azimuth, 5° a press), ↑/↓ elevation; left
@@ -23,7 +23,19 @@
 //! `direct/robust/exact` render with the convex origin, through the same display
 //! model, in magenta); `Tab`/`Shift+Tab` or `1`–`9` pick the display model; `B`
 //! switches the Bayer matrix 8×8/4×4; `T` switches the OLED theme (blue/white) of the
-//! binary models; `Esc`/`Q` quits.
+//! binary models; `Space` pauses and resumes a scene's motion, `.`/`,` pause and step
+//! one frame forward/back; `Esc`/`Q` quits.
+//!
+//! A scene file with `[[motion]]` plays in real time at its `[animation]` frame rate:
+//! frame `k` (the moment `k / fps`) is shown from `k / fps` seconds after the start,
+//! looping after its `frames`; when drawing is slower, frames are skipped rather than
+//! the motion slowed. The frames are drawn onto one framebuffer of the display model
+//! through one `Incremental`, as a firmware draws them: only the pixels that can
+//! differ from the frame before are traced and sent. A change of view (orbit, zoom,
+//! method, sampling, model) is the next frame's, which the incremental rule draws
+//! whole; a reload draws the next frame whole. `--frame K` starts paused on frame `K`,
+//! the render CLI's `--frame K` (the moment `(K − 1) / fps`). A still scene is drawn
+//! whole at each change, so the status bar's time is always a whole frame's.
 //!
 //! A scene file without lights, planes or mirrors is drawn through the spheres-only
 //! type `Scene<N>` (the Lab #1 loop), one with them through the full type with the
@@ -36,14 +48,23 @@
 //! Below the image, a status bar (omitted with `--no-overlay`) shows the render time
 //! of the last frame (the kernel drawing into the model's framebuffer; measured with
 //! `Instant` around `Render::draw`), the model and the method, and for a scene with
-//! lights, planes or mirrors the secondary rays' origin (`convex`, `eps=1e-3`).
+//! lights, planes or mirrors the secondary rays' origin (`convex`, `eps=1e-3`). For a
+//! scene that moves, its third line shows the frame rate achieved and the share of the
+//! display's pixels the last frame traced and sent (`25 fps traced 12% sent 10%`), or
+//! while paused the frame (`paused 12/30 traced …`). The status bar and the error text
+//! are drawn on the window, never on the model's framebuffer the frames are drawn on:
+//! they cover no pixel the next frame would have to redraw.
 //!
 //! Headless: `--screenshot OUT.png` renders one frame and writes it (the window's
-//! pixels, with `--scale`) without opening a window or needing a display.
+//! pixels, with `--scale`) without opening a window or needing a display. With
+//! `--frame K` and a scene that moves, frame `K − 1` is drawn first and frame `K` over
+//! it through the incremental rule, as the player draws it: the screenshot is then the
+//! render CLI's `--frame K` PNG only if that rule is exact.
 //! `--screenshot OUT.png --frames N` opens the window, shows N frames, then writes the
 //! frame it showed. The simulator's own `EG_SIMULATOR_DUMP=OUT.png` also works: the
 //! first frame handed to the window is written and the program exits.
 
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
 use clap::builder::{PossibleValuesParser, TypedValueParser};
@@ -66,10 +87,13 @@ use embedded_graphics_simulator::{
 };
 use embedded_raytracer::{
     dither::{Bayer, DitherColor, DitherExt},
-    scene_file, Arithmetic, Camera, CameraParams, Method, Options, Render, Sampling, Scene, SecondaryOrigin,
+    motion::{Animation, MotionError},
+    scene_file::{self, MAX_MOTIONS},
+    Arithmetic, Camera, CameraParams, FrameStats, Method, Options, Render, Sampling, Scene, SecondaryOrigin,
     SphereTest, Sqrt, Stepping, Vec3,
 };
 
+mod play;
 mod standard;
 use standard::{FullSceneFile, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
 
@@ -104,7 +128,7 @@ fn usage() -> String {
     format!(
         "usage: ertrace-preview [SCENE.toml] [--display MODEL] [--size WxH] [--scale N] \
 [--bayer 4|8] [--theme oled-blue|oled-white] {} [--sampling center|grid:N|adaptive:N] [--diff] [--no-overlay] \
-[--screenshot OUT.png [--frames N]]\n  MODEL: rgb888 rgb565 gray8 gray4 gray4-dither gray2 \
+[--frame K] [--screenshot OUT.png [--frames N]]\n  MODEL: rgb888 rgb565 gray8 gray4 gray4-dither gray2 \
 gray2-dither binary binary-dither",
         standard::method_flags()
     )
@@ -209,13 +233,13 @@ impl View {
 /// A frame as the display shows it: one window colour per display pixel, row-major.
 struct Shown {
     pixels: Vec<Rgb888>,
-    render_time: Duration,
 }
 
 /// The scene type with every capacity the host tools have.
 type FullScene = Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>;
 
 /// A loaded scene, through the type the render CLI would draw it with.
+#[derive(Clone)]
 enum Loaded {
     /// No light, plane or mirror: the spheres-only type, whose loop is Lab #1's.
     Spheres(Box<Scene<MAX_SPHERES>>),
@@ -224,15 +248,42 @@ enum Loaded {
 }
 
 impl Loaded {
-    /// Loads a scene file with the full capacities; returns the scene and its camera.
-    fn load(path: &Path) -> Result<(Loaded, CameraParams), String> {
+    /// Loads a scene file with the full capacities; returns the scene, its camera and
+    /// its motion.
+    fn load(path: &Path) -> Result<(Loaded, CameraParams, Animation<MAX_MOTIONS>), String> {
         let file: Box<FullSceneFile> = Box::new(scene_file::load(path).map_err(|e| e.to_string())?);
         let params = *file.camera.params();
+        let animation = file.animation.clone();
         let scene = match file.spheres_only() {
             Some(spheres) => Loaded::Spheres(Box::new(spheres.scene)),
             None => Loaded::Full(Box::new(file.scene)),
         };
-        Ok((scene, params))
+        Ok((scene, params, animation))
+    }
+
+    /// The scene and camera parameters of frame `frame` of `animation`, applied to this
+    /// scene and `params` (the library's `apply_frame`: the render CLI's and the
+    /// boards' frame).
+    fn at_frame(
+        &self,
+        animation: &Animation<MAX_MOTIONS>,
+        params: &CameraParams,
+        frame: u32,
+    ) -> Result<(Loaded, CameraParams), MotionError> {
+        let mut at = *params;
+        let moved = match self {
+            Loaded::Spheres(base) => {
+                let mut scene = base.clone();
+                animation.apply_frame(&**base, params, frame, &mut *scene, &mut at)?;
+                Loaded::Spheres(scene)
+            }
+            Loaded::Full(base) => {
+                let mut scene = base.clone();
+                animation.apply_frame(&**base, params, frame, &mut *scene, &mut at)?;
+                Loaded::Full(scene)
+            }
+        };
+        Ok((moved, at))
     }
 
     /// Whether the scene is drawn through the full type (lights, planes or mirrors):
@@ -306,12 +357,9 @@ where
         .with_method(input.2)
         .with_options(input.3)
         .with_sampling(input.4);
-    let start = Instant::now();
     let Ok(()) = render.draw(&mut display); // the simulator cannot fail
-    let render_time = start.elapsed();
     Shown {
         pixels: window_colors(&display, settings),
-        render_time,
     }
 }
 
@@ -330,12 +378,9 @@ where
         .with_method(input.2)
         .with_options(input.3)
         .with_sampling(input.4);
-    let start = Instant::now();
     let Ok(()) = render.draw(&mut display.dithered_with(bayer));
-    let render_time = start.elapsed();
     Shown {
         pixels: window_colors(&display, settings),
-        render_time,
     }
 }
 
@@ -435,6 +480,8 @@ struct Args {
     overlay: bool,
     screenshot: Option<PathBuf>,
     frames: Option<u32>,
+    /// The frame of the scene's motion to start paused on (1: its start).
+    frame: Option<u32>,
 }
 
 /// The flags as clap parses them; [`parse_args`] turns them into [`Args`]. Every
@@ -494,6 +541,10 @@ struct Cli {
     /// With --screenshot: open the window, show N frames, write the last
     #[arg(long, value_name = "N", requires = "screenshot", value_parser = clap::value_parser!(u32))]
     frames: Option<u32>,
+    /// Start paused on frame K of the scene's motion, at t = (K - 1)/fps seconds (the
+    /// render CLI's --frame K); Space plays
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..))]
+    frame: Option<u32>,
 }
 
 /// Every sampling's name (`Sampling::ALL` as `Display` writes them), for clap, which
@@ -548,6 +599,7 @@ fn parse_args<T: Into<std::ffi::OsString> + Clone>(
         overlay: !cli.no_overlay,
         screenshot: cli.screenshot,
         frames: cli.frames.map(|n| n.max(1)),
+        frame: cli.frame,
     })
 }
 
@@ -556,9 +608,14 @@ struct App {
     path: PathBuf,
     mtime: Option<SystemTime>,
     last_poll: Instant,
-    /// The last scene that loaded.
+    /// The last scene that loaded, as its file places it (before any motion).
     scene: Loaded,
     base: CameraParams,
+    /// The scene's motion (none: a still scene).
+    animation: Animation<MAX_MOTIONS>,
+    /// The frame of the motion shown, and whether it plays.
+    clock: play::Clock,
+    /// The user's view of the file's camera (before any motion of the camera).
     camera: Camera,
     /// The display's resolution (fixed for the session).
     size: Size,
@@ -570,6 +627,11 @@ struct App {
     font: &'static MonoFont<'static>,
     status_height: u32,
     screen: SimulatorDisplay<Rgb888>,
+    /// The display model's framebuffer the frames are drawn on, incrementally.
+    display: play::Display,
+    /// What the last frame cost, and the arithmetic it was drawn in.
+    stats: FrameStats,
+    arithmetic: Option<Arithmetic>,
     dirty: bool,
     drag: Option<Point>,
     /// Pixels that differed from the reference in the last difference view.
@@ -578,7 +640,7 @@ struct App {
 
 impl App {
     fn new(args: &Args) -> Result<Self, String> {
-        let (scene, base) = Loaded::load(&args.scene)?;
+        let (scene, base, animation) = Loaded::load(&args.scene)?;
         let size = args.size.unwrap_or(base.size);
         let camera = base.with_size(size).build().map_err(|e| {
             format!(
@@ -600,6 +662,8 @@ impl App {
             last_poll: Instant::now(),
             scene,
             base,
+            clock: play::Clock::new(args.frame.map(|k| k - 1), Instant::now()),
+            animation,
             camera,
             size,
             orbit: Orbit::default(),
@@ -617,6 +681,9 @@ impl App {
             font,
             status_height,
             screen: SimulatorDisplay::new(Size::new(size.width, size.height + status_height)),
+            display: play::Display::new(size, args.model, args.bayer),
+            stats: FrameStats::default(),
+            arithmetic: None,
             dirty: true,
             drag: None,
             differing: None,
@@ -645,9 +712,12 @@ impl App {
         }
         self.mtime = now;
         match Loaded::load(&self.path) {
-            Ok((scene, base)) => {
+            Ok((scene, base, animation)) => {
                 self.scene = scene;
                 self.base = base;
+                self.animation = animation;
+                self.clock.reloaded(&self.animation, Instant::now());
+                self.display.invalidate();
                 self.error = None;
                 self.update_camera();
                 eprintln!("{}: reloaded", self.path.display());
@@ -660,9 +730,47 @@ impl App {
         }
     }
 
-    /// Renders the current view into the screen (image, difference marks, status bar).
+    /// Whether the scene moves.
+    fn moves(&self) -> bool {
+        !self.animation.is_still()
+    }
+
+    /// Moves a playing motion on to the frame due at `now`.
+    fn tick(&mut self, now: Instant) {
+        if self.clock.tick(&self.animation, now) {
+            self.dirty = true;
+        }
+    }
+
+    /// Draws the frame shown onto the display model's framebuffer (only what changed,
+    /// for a scene that moves; whole, for a still one), then the screen from it
+    /// (image, difference marks, status bar).
     fn redraw(&mut self) {
-        let shown = shade(&self.scene, &self.camera, &self.view, self.view.method);
+        let (scene, camera) = match moment(&self.scene, &self.animation, &self.camera, self.clock.frame()) {
+            Ok(moment) => moment,
+            Err(e) => {
+                // The last frame stays on screen.
+                eprintln!("error: {}: {e}", self.path.display());
+                self.dirty = false;
+                return;
+            }
+        };
+        if !self.moves() {
+            self.display.invalidate();
+        }
+        let start = Instant::now();
+        let stats = self.display.draw(&scene, &camera, &self.view);
+        let render_time = start.elapsed();
+        self.clock.record(Instant::now());
+        if let Some(e) = stats.refused {
+            eprintln!(
+                "error: {}: the frame cannot be drawn exactly: {e}",
+                self.path.display()
+            );
+        }
+        self.stats = stats;
+        self.arithmetic = Some(scene.arithmetic(&camera, self.view.method));
+        let shown = self.display.window_colors(&self.view.output_settings());
         let w = self.size.width as usize;
         let mut differing = 0usize;
         let reference_view = View {
@@ -671,8 +779,9 @@ impl App {
         };
         let reference = self
             .diff
-            .then(|| shade(&self.scene, &self.camera, &reference_view, REFERENCE).pixels);
-        let pixels = shown.pixels.iter().enumerate().map(|(k, &c)| match &reference {
+            .then(|| shade(&scene, &camera, &reference_view, REFERENCE).pixels);
+        drop(scene);
+        let pixels = shown.iter().enumerate().map(|(k, &c)| match &reference {
             Some(r) if r.get(k) != Some(&c) => {
                 differing += 1;
                 DIFF_COLOR
@@ -682,7 +791,7 @@ impl App {
         let area = Rectangle::new(Point::zero(), self.size);
         let Ok(()) = self.screen.fill_contiguous(&area, pixels);
         self.differing = self.diff.then_some(differing);
-        debug_assert_eq!(shown.pixels.len(), w * self.size.height as usize);
+        debug_assert_eq!(shown.len(), w * self.size.height as usize);
 
         if self.overlay {
             let status = Rectangle::new(
@@ -690,7 +799,7 @@ impl App {
                 Size::new(self.size.width, self.status_height),
             );
             let Ok(()) = self.screen.fill_solid(&status, Rgb888::new(24, 24, 24));
-            let lines = self.status(shown.render_time, differing);
+            let lines = self.status(render_time, differing);
             let style = MonoTextStyle::new(self.font, Rgb888::new(230, 230, 230));
             let line_h = self.font.character_size.height as i32 + 1;
             for (k, line) in lines.iter().enumerate() {
@@ -706,7 +815,9 @@ impl App {
 
     /// The status bar's three lines: render time and display model; the method (and,
     /// for a scene with lights, planes or mirrors, the secondary origin); the
-    /// difference count or the orbit.
+    /// difference count, or for a scene that moves the frame rate achieved (the frame,
+    /// paused) and the share of the display the last frame traced and sent, or the
+    /// orbit.
     fn status(&self, render_time: Duration, differing: usize) -> [String; 3] {
         let ms = render_time.as_secs_f64() * 1e3;
         let mut model = self.view.model.name().to_string();
@@ -718,9 +829,11 @@ impl App {
             };
         }
         let mut method = self.view.method.to_string();
-        if self.view.method.arithmetic == Arithmetic::Integer
-            && self.scene.arithmetic(&self.camera, self.view.method) == Arithmetic::F32
-        {
+        // The last frame's (a moving scene's frames can differ), else the view's.
+        let arithmetic = self
+            .arithmetic
+            .unwrap_or_else(|| self.scene.arithmetic(&self.camera, self.view.method));
+        if self.view.method.arithmetic == Arithmetic::Integer && arithmetic == Arithmetic::F32 {
             method += " → f32";
         }
         if self.scene.has_features() {
@@ -728,6 +841,26 @@ impl App {
         }
         let third = if self.diff {
             format!("D: {differing} px differ")
+        } else if self.moves() {
+            let pixels = f64::from(self.size.width) * f64::from(self.size.height);
+            let share = |n: u32| 100.0 * f64::from(n) / pixels.max(1.0);
+            let played = if self.clock.is_paused() {
+                format!(
+                    "paused {}/{}",
+                    u64::from(self.clock.frame()) + 1,
+                    self.animation.frames()
+                )
+            } else {
+                match self.clock.rate() {
+                    Some(rate) => format!("{rate:.0} fps"),
+                    None => "- fps".to_string(),
+                }
+            };
+            format!(
+                "{played} traced {:.0}% sent {:.0}%",
+                share(self.stats.traced),
+                share(self.stats.sent)
+            )
         } else {
             let o = self.orbit;
             format!(
@@ -831,6 +964,15 @@ impl App {
                     };
                     self.dirty = true;
                 }
+                Keycode::SPACE if self.moves() => {
+                    self.clock.toggle(&self.animation, Instant::now());
+                    self.dirty = true;
+                }
+                Keycode::PERIOD | Keycode::COMMA if self.moves() => {
+                    let delta = if keycode == Keycode::PERIOD { 1 } else { -1 };
+                    self.clock.step(&self.animation, delta);
+                    self.dirty = true;
+                }
                 Keycode::T => {
                     self.view.theme = match self.view.theme {
                         BinaryColorTheme::OledBlue => BinaryColorTheme::OledWhite,
@@ -885,6 +1027,19 @@ impl App {
         true
     }
 
+    /// Draws the frame shown as the player reaches it: for a scene that moves, the
+    /// frame before it first (none before the start), then it over that through the
+    /// incremental rule.
+    fn draw_as_played(&mut self) {
+        let frame = self.clock.frame();
+        if self.moves() && frame > 0 {
+            self.clock.show(frame - 1);
+            self.redraw();
+            self.clock.show(frame);
+        }
+        self.redraw();
+    }
+
     fn turn(&mut self, delta: f32) {
         self.orbit.azimuth += delta;
         self.update_camera();
@@ -900,6 +1055,27 @@ impl App {
         self.orbit.zoom_steps = (self.orbit.zoom_steps + steps).clamp(-40, 40);
         self.update_camera();
     }
+}
+
+/// The scene and camera of frame `frame` of `animation`: for a still scene `scene`
+/// through `camera` (the user's view of the file's camera); for one that moves, the
+/// motion's frame applied to them.
+fn moment<'a>(
+    scene: &'a Loaded,
+    animation: &Animation<MAX_MOTIONS>,
+    camera: &Camera,
+    frame: u32,
+) -> Result<(Cow<'a, Loaded>, Camera), String> {
+    if animation.is_still() {
+        return Ok((Cow::Borrowed(scene), *camera));
+    }
+    let (scene, params) = scene
+        .at_frame(animation, camera.params(), frame)
+        .map_err(|e| format!("frame {}: {e}", u64::from(frame) + 1))?;
+    let camera = params
+        .build()
+        .map_err(|e| format!("camera at frame {}: {e}", u64::from(frame) + 1))?;
+    Ok((Cow::Owned(scene), camera))
 }
 
 /// The status bar's name of a secondary origin: `convex`, `eps=1e-3`.
@@ -954,7 +1130,7 @@ fn run() -> Result<(), String> {
 
     if let (Some(path), None) = (&args.screenshot, args.frames) {
         // Headless: no window, no SDL.
-        app.redraw();
+        app.draw_as_played();
         save(&app.screen, &settings, path)?;
         println!("{} -> {}", args.scene.display(), path.display());
         return Ok(());
@@ -963,6 +1139,9 @@ fn run() -> Result<(), String> {
     let mut window = Window::new("embedded-raytracer", &settings);
     let mut frame = 0u32;
     loop {
+        // The window paces the loop (60 a second unless the motion's rate is higher).
+        window.set_max_fps(app.animation.fps().ceil().clamp(60.0, 1000.0) as u32);
+        app.tick(Instant::now());
         if app.dirty {
             app.redraw();
         }
@@ -1009,6 +1188,44 @@ mod tests {
     const SHADOWS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/shadows.toml");
     #[allow(dead_code)]
     const MIRRORS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/mirrors.toml");
+
+    /// Scenes that move: shadows on a floor (the full type), spheres only.
+    const BOUNCE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/bounce.toml");
+    const CIRCLING: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/circling.toml");
+
+    /// The picture on the screen (the status bar left out).
+    fn image(app: &App) -> Vec<Rgb888> {
+        Rectangle::new(Point::zero(), app.size)
+            .points()
+            .map(|p| app.screen.get_pixel(p))
+            .collect()
+    }
+
+    /// Frame `frame` (0: the start) of the scene file at `path` at `size`, rendered
+    /// whole as the render CLI renders `--frame frame+1`: loaded with the full
+    /// capacities, the motion applied at `frame / fps`, drawn through the spheres-only
+    /// type if the file has no light, plane or mirror.
+    fn full_frame(path: &str, size: Size, frame: u32) -> Vec<Rgb888> {
+        use embedded_raytracer::motion::frame_time;
+        let file: Box<FullSceneFile> = Box::new(scene_file::load(path).unwrap());
+        let base = file.camera.params().with_size(size);
+        let (mut moved, mut params) = (file.clone(), base);
+        let t = frame_time(frame, file.animation.fps());
+        file.animation
+            .apply(&file.scene, &base, t, &mut moved.scene, &mut params)
+            .unwrap();
+        let camera = params.build().unwrap();
+        let mut out = Vec::new();
+        match moved.spheres_only() {
+            Some(s) => Render::<'_, MAX_SPHERES, Rgb888>::new(&s.scene, &camera).trace(|s| out.push(s.color)),
+            None => Render::<'_, MAX_SPHERES, Rgb888, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>::new(
+                &moved.scene,
+                &camera,
+            )
+            .trace(|s| out.push(s.color)),
+        }
+        out
+    }
 
     fn args(scene: &str, extra: &[&str]) -> Args {
         let all = std::iter::once(scene)
@@ -1361,11 +1578,254 @@ mod tests {
             &["--sampling", "grid:5"],
             &["--sampling", "box"],
             &["--frames", "2"],
+            &["--frame", "0"],
+            &["--frame", "x"],
             &["--frobnicate"],
         ] {
             let all = bad.iter().map(|s| s.to_string());
             assert!(parse_args(all).is_err(), "{bad:?}");
         }
+    }
+
+    /// Playing draws each frame over the last through one `Incremental`: every frame of
+    /// a loop of `bounce` (and the step back to its start) is the whole frame's render,
+    /// and most were drawn tracing and sending a part of the display only.
+    #[test]
+    fn motion_is_drawn_incrementally_and_each_frame_is_the_full_render() {
+        let size = Size::new(96, 96);
+        let mut app = App::new(&args(
+            BOUNCE,
+            &["--size", "96x96", "--no-overlay", "--frame", "1"],
+        ))
+        .unwrap();
+        assert!(app.moves() && app.clock.is_paused());
+        app.redraw();
+        assert!(app.stats.full, "the first frame is drawn whole");
+        assert!(image(&app) == full_frame(BOUNCE, size, 0));
+        let n = app.animation.frames();
+        assert_eq!(n, 30);
+        let mut partial = 0;
+        for k in 1..=n {
+            app.handle(key(Keycode::PERIOD));
+            assert!(app.dirty);
+            app.redraw();
+            let frame = k % n;
+            assert_eq!(app.clock.frame(), frame);
+            assert!(
+                image(&app) == full_frame(BOUNCE, size, frame),
+                "frame {frame}: not the full render"
+            );
+            if !app.stats.full {
+                partial += 1;
+                assert!(app.stats.sent < 96 * 96 / 2, "frame {frame}: {:?}", app.stats);
+            }
+        }
+        assert!(partial > n / 2, "only {partial} of {n} frames drawn in part");
+        // And back.
+        app.handle(key(Keycode::COMMA));
+        app.redraw();
+        assert_eq!(app.clock.frame(), n - 1);
+        assert!(image(&app) == full_frame(BOUNCE, size, n - 1));
+    }
+
+    /// The headless screenshot of `--frame K` (drawn over frame K − 1, as played) is the
+    /// render CLI's `--frame K`: the moment `(K − 1)/fps`, beyond the loop too.
+    #[test]
+    fn frame_k_screenshot_is_the_full_render_of_that_moment() {
+        let shot = |k: u32, extra: &[&str]| {
+            let k_text = k.to_string();
+            let flags = [
+                &[
+                    "--display",
+                    "rgb888",
+                    "--scale",
+                    "1",
+                    "--no-overlay",
+                    "--frame",
+                    &k_text,
+                ][..],
+                extra,
+            ]
+            .concat();
+            let mut app = App::new(&args(BOUNCE, &flags)).unwrap();
+            app.draw_as_played();
+            assert!(!app.stats.full, "frame {k}: not drawn over frame {}", k - 1);
+            app
+        };
+        let app = shot(9, &[]);
+        assert_eq!(app.size, Size::new(240, 240));
+        assert!(image(&app) == full_frame(BOUNCE, app.size, 8));
+        // The PNG the flag writes holds those pixels.
+        let dir = std::env::temp_dir().join(format!("simulator-frame-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let png = dir.join("frame9.png");
+        save(&app.screen, &OutputSettingsBuilder::new().scale(1).build(), &png).unwrap();
+        assert!(std::fs::metadata(&png).unwrap().len() > 0);
+        std::fs::remove_dir_all(&dir).unwrap();
+        // Frame 41 is the moment 40/25 s, not frame 11 of the loop.
+        let app = shot(41, &["--size", "64x64"]);
+        assert_eq!(app.clock.frame(), 40);
+        assert!(image(&app) == full_frame(BOUNCE, app.size, 40));
+        // Frame 1 is drawn whole: there is no frame before it.
+        let mut app = App::new(&args(BOUNCE, &["--size", "64x64", "--frame", "1"])).unwrap();
+        app.draw_as_played();
+        assert!(app.stats.full);
+    }
+
+    /// Changes of view while a scene moves flow into the next frame, through the same
+    /// framebuffer: a new display model (or Bayer matrix) starts it again, a new method
+    /// or camera is a frame the incremental rule draws whole; each frame is the
+    /// model's full render.
+    #[test]
+    fn view_changes_flow_into_the_next_frame() {
+        let mut app = App::new(&args(
+            CIRCLING,
+            &["--size", "64x64", "--display", "gray2-dither", "--frame", "1"],
+        ))
+        .unwrap();
+        assert!(!app.scene.has_features());
+        let check = |app: &App, what: &str| {
+            let (scene, camera) = moment(&app.scene, &app.animation, &app.camera, app.clock.frame()).unwrap();
+            let expected = shade(&scene, &camera, &app.view, app.view.method).pixels;
+            assert!(image(app) == expected, "{what}: not the full render");
+        };
+        app.redraw();
+        check(&app, "first");
+        let steps: [(Keycode, &str, Option<bool>); 8] = [
+            (Keycode::PERIOD, "step", Some(false)),
+            (Keycode::PERIOD, "step", Some(false)),
+            (Keycode::B, "bayer", Some(true)),
+            (Keycode::TAB, "model", Some(true)),
+            (Keycode::PERIOD, "step in binary", Some(false)),
+            (Keycode::M, "method", Some(true)),
+            (Keycode::RIGHT, "orbit", Some(true)),
+            (Keycode::T, "theme", None),
+        ];
+        for (code, what, full) in steps {
+            app.handle(key(code));
+            app.redraw();
+            check(&app, what);
+            if let Some(full) = full {
+                assert_eq!(app.stats.full, full, "{what}: {:?}", app.stats);
+            }
+        }
+        assert_eq!(app.view.model, Model::Binary);
+        app.handle(key(Keycode::NUM_9));
+        app.handle(key(Keycode::I));
+        app.handle(key(Keycode::PERIOD));
+        app.redraw();
+        check(&app, "integer kernel, binary-dither");
+        app.handle(key(Keycode::PERIOD));
+        app.redraw();
+        check(&app, "integer kernel, next frame");
+        assert!(!app.stats.full, "{:?}", app.stats);
+    }
+
+    /// A scene that moves plays at its frame rate, looping; `Space` pauses and resumes,
+    /// `.`/`,` step; the status bar shows the rate, the frame while paused, and the
+    /// share traced and sent.
+    #[test]
+    fn the_motion_plays_in_real_time_and_space_pauses_it() {
+        let mut app = App::new(&args(BOUNCE, &["--size", "48x48"])).unwrap();
+        assert!(!app.clock.is_paused(), "a moving scene plays from the start");
+        let t0 = Instant::now();
+        app.clock = play::Clock::new(None, t0);
+        app.dirty = false;
+        app.tick(t0 + Duration::from_millis(500));
+        assert_eq!(app.clock.frame(), 12, "0.5 s at 25 fps");
+        assert!(app.dirty);
+        // 30 frames loop in 1.2 s.
+        app.tick(t0 + Duration::from_millis(1300));
+        assert_eq!(app.clock.frame(), 2);
+        app.redraw();
+        let line = &app.status(Duration::ZERO, 0)[2];
+        assert!(
+            line.contains(" fps traced ") && line.contains("% sent "),
+            "{line}"
+        );
+        app.handle(key(Keycode::SPACE));
+        assert!(app.clock.is_paused());
+        app.tick(t0 + Duration::from_secs(5));
+        assert_eq!(app.clock.frame(), 2, "paused");
+        app.redraw();
+        let line = &app.status(Duration::ZERO, 0)[2];
+        assert!(line.starts_with("paused 3/30 traced "), "{line}");
+        for _ in 0..3 {
+            app.handle(key(Keycode::COMMA));
+        }
+        assert_eq!(app.clock.frame(), 29, "back over the start");
+        app.handle(key(Keycode::SPACE));
+        assert!(!app.clock.is_paused());
+        app.tick(Instant::now());
+        assert_eq!(app.clock.frame(), 29, "resumed from the frame shown");
+        app.handle(key(Keycode::PERIOD));
+        assert!(app.clock.is_paused(), "a step pauses");
+        assert_eq!(app.clock.frame(), 0);
+
+        // The achieved rate: frames drawn over the last second.
+        let mut clock = play::Clock::new(None, t0);
+        assert_eq!(clock.rate(), None);
+        for k in 0..11 {
+            clock.record(t0 + Duration::from_millis(40 * k));
+        }
+        assert!((clock.rate().unwrap() - 25.0).abs() < 1e-9);
+        clock.record(t0 + Duration::from_millis(3000));
+        assert_eq!(clock.rate(), None, "one frame in the last second");
+    }
+
+    /// A reload of a scene that moves keeps the paused frame and draws it whole: the
+    /// new file's render of that moment.
+    #[test]
+    fn a_reload_keeps_the_frame_and_draws_it_whole() {
+        let dir = std::env::temp_dir().join(format!("simulator-reload-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("bounce.toml");
+        let text = std::fs::read_to_string(BOUNCE).unwrap();
+        std::fs::write(&path, &text).unwrap();
+        let p = path.to_str().unwrap();
+        let mut app = App::new(&args(p, &["--size", "64x64", "--frame", "5"])).unwrap();
+        app.redraw();
+        app.handle(key(Keycode::PERIOD));
+        app.redraw();
+        assert!(!app.stats.full);
+        std::fs::write(
+            &path,
+            text.replace("color = [230, 60, 50]", "color = [40, 60, 230]"),
+        )
+        .unwrap();
+        let t = SystemTime::UNIX_EPOCH + Duration::from_secs(4_000_000);
+        std::fs::File::options()
+            .write(true)
+            .open(&path)
+            .unwrap()
+            .set_modified(t)
+            .unwrap();
+        app.last_poll = Instant::now() - 2 * POLL;
+        app.poll_file();
+        assert_eq!(app.error, None);
+        assert_eq!(app.clock.frame(), 5);
+        app.redraw();
+        assert!(app.stats.full, "{:?}", app.stats);
+        assert!(image(&app) == full_frame(p, app.size, 5));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A still scene: no clock, `Space` and the step keys do nothing, every frame is
+    /// drawn whole, the status bar shows the orbit.
+    #[test]
+    fn a_still_scene_is_drawn_whole_at_each_change() {
+        let mut app = App::new(&args(LAB, &["--size", "48x36"])).unwrap();
+        assert!(!app.moves());
+        app.redraw();
+        assert!(app.stats.full);
+        for code in [Keycode::SPACE, Keycode::PERIOD, Keycode::COMMA] {
+            app.handle(key(code));
+            assert!(!app.dirty, "{code}");
+        }
+        app.handle(key(Keycode::T));
+        app.redraw();
+        assert!(app.stats.full && app.stats.sent == 48 * 36);
+        assert!(app.status(Duration::ZERO, 0)[2].starts_with("az "));
     }
 
     #[test]

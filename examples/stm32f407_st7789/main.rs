@@ -1,9 +1,11 @@
 //! A real board: an STM32F407 (STM32F4DISCOVERY, or any F405/F407 board with an 8 MHz
 //! crystal) driving a 240×240 ST7789 SPI LCD through `mipidsi`. Renders `scenes/lab.toml`
-//! at 240×240 (its camera, size replaced), then orbits the camera around the look-at
-//! point, 5° per frame, and prints each frame's rate and time (render + SPI transfer,
-//! measured with the DWT cycle counter) in the top-left corner, or why the frame was not
-//! drawn.
+//! at 240×240 (its camera, size replaced), then bounces its small yellow sphere (the
+//! library's motion, `embedded_raytracer::motion`), frame after frame through
+//! `Incremental`: only the pixels the sphere can have changed are
+//! traced and sent. The top-left corner shows each frame's rate, time (render + SPI
+//! transfer, measured with the DWT cycle counter) and the share of the panel sent, or
+//! why the frame was not drawn.
 //!
 //! ```sh
 //! cargo build --release --example stm32f407_st7789 --target thumbv7em-none-eabihf
@@ -42,7 +44,8 @@ mod fw {
     use embedded_graphics::prelude::*;
     use embedded_graphics::text::{Baseline, Text};
     use embedded_hal_bus::spi::ExclusiveDevice;
-    use embedded_raytracer::{Camera, CameraError, FrameError, Render, Vec3};
+    use embedded_raytracer::motion::{Animation, Bounce, Motion, MotionError};
+    use embedded_raytracer::{CameraError, FrameError, FrameStats, Incremental, Render};
     use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
     use panic_halt as _;
     use stm32f4xx_hal::{
@@ -58,12 +61,14 @@ mod fw {
     /// Why a frame was not drawn.
     enum Refused {
         Camera(CameraError),
+        Motion(MotionError),
         Frame(FrameError),
         Display,
     }
 
-    /// The orbit's step per frame (5°).
-    const STEP: f32 = 5.0 * (core::f32::consts::PI / 180.0);
+    /// The small yellow sphere (sphere 3) bounces 1.2 units high every 0.96 s: 24
+    /// frames at the motion's 25 frames a second, after which it repeats exactly.
+    const ANIMATION: Animation<1> = Animation::from_array([Motion::Bounce(Bounce::new(3, 1.2, 0.96))]);
 
     #[entry]
     fn main() -> ! {
@@ -112,48 +117,58 @@ mod fw {
         };
 
         let size = display.bounding_box().size;
-        let lab = scenes::LAB_CAMERA;
-        let offset = lab.eye - lab.look_at;
+        let base_camera = scenes::LAB_CAMERA.with_size(size);
+        let mut scene = scenes::LAB.clone();
+        // What the display shows: the next frame traces and sends only what changed.
+        let mut shown = Incremental::new();
         let text_style = MonoTextStyleBuilder::new()
             .font(&FONT_6X10)
             .text_color(Rgb565::WHITE)
             .background_color(Rgb565::BLACK)
             .build();
-        let mut angle = 0.0f32;
+        let mut n = 0u32;
         // Labels the display did not take.
         let mut label_errors = 0u32;
         loop {
-            // Orbit the lab camera's eye around the look-at point (about +y).
-            let (s, c) = (libm::sinf(angle), libm::cosf(angle));
-            let eye =
-                lab.look_at + Vec3::new(c * offset.x + s * offset.z, offset.y, c * offset.z - s * offset.x);
             let start = DWT::cycle_count();
             // Rgb888 → Rgb565 inferred from the display. An error is shown, not
             // discarded: a camera the kernel refuses, a frame it cannot draw exactly
-            // (`check`: `draw` would leave the last frame on the screen), or a display
-            // that failed a write.
+            // (`check`: the frame would be left undrawn), or a display that failed a
+            // write (its content is then unknown: the next frame is drawn whole).
             let mut label = heapless::String::<200>::new();
-            let drawn = match Camera::new(eye, lab.look_at, lab.up, lab.fov_y, size) {
-                Ok(camera) => {
-                    let render = Render::new(&scenes::LAB, &camera);
+            let mut params = base_camera;
+            let moved = ANIMATION.apply_frame(&scenes::LAB, &base_camera, n, &mut scene, &mut params);
+            let drawn = match (moved, params.build()) {
+                (Err(e), _) => Err(Refused::Motion(e)),
+                (Ok(()), Err(e)) => Err(Refused::Camera(e)),
+                (Ok(()), Ok(camera)) => {
+                    let render = Render::new(&scene, &camera);
                     match render.check() {
-                        Ok(()) => render.draw(&mut display).map_err(|_| Refused::Display),
+                        Ok(()) => match shown.draw(&render, &mut display) {
+                            Ok(FrameStats { refused: Some(e), .. }) => Err(Refused::Frame(e)),
+                            Ok(stats) => Ok(stats),
+                            Err(_) => {
+                                shown.invalidate();
+                                Err(Refused::Display)
+                            }
+                        },
                         Err(e) => Err(Refused::Frame(e)),
                     }
                 }
-                Err(e) => Err(Refused::Camera(e)),
             };
             let cycles = DWT::cycle_count().wrapping_sub(start);
             let tenths = u64::from(sysclk_hz) * 10 / u64::from(cycles.max(1));
             let written = match drawn {
-                Ok(()) => write!(
+                Ok(stats) => write!(
                     label,
-                    "{}.{} fps {} ms",
+                    "{}.{} fps {} ms sent {}%",
                     tenths / 10,
                     tenths % 10,
-                    u64::from(cycles) * 1000 / u64::from(sysclk_hz)
+                    u64::from(cycles) * 1000 / u64::from(sysclk_hz),
+                    u64::from(stats.sent) * 100 / u64::from(size.width * size.height)
                 ),
                 Err(Refused::Camera(e)) => write!(label, "camera: {e}"),
+                Err(Refused::Motion(e)) => write!(label, "motion: {e}"),
                 Err(Refused::Frame(e)) => write!(label, "{e}"),
                 Err(Refused::Display) => write!(label, "display write failed"),
             };
@@ -168,17 +183,26 @@ mod fw {
             // Lines of 39 characters (FONT_6X10 on 240 pixels; the messages are ASCII),
             // drawn on the display that just failed, if it did: nothing else can show
             // it, so a failure here is counted and shown once the display takes it.
-            let mut shown = Ok(Point::zero());
+            // Each line covers part of the picture: `shown` is told, so that the next
+            // frame restores it.
+            let mut label_shown = Ok(Point::zero());
             for (row, line) in label.as_bytes().chunks(39).enumerate() {
                 let line = core::str::from_utf8(line).unwrap_or("?");
-                let at = Point::new(2, 2 + 10 * row as i32);
-                shown =
-                    shown.and(Text::with_baseline(line, at, text_style, Baseline::Top).draw(&mut display));
+                let text = Text::with_baseline(
+                    line,
+                    Point::new(2, 2 + 10 * row as i32),
+                    text_style,
+                    Baseline::Top,
+                );
+                shown.invalidate_area(text.bounding_box());
+                label_shown = label_shown.and(text.draw(&mut display));
             }
-            if shown.is_err() {
+            if label_shown.is_err() {
                 label_errors = label_errors.saturating_add(1);
             }
-            angle = (angle + STEP) % (2.0 * core::f32::consts::PI);
+            // The motion repeats after `frames()` frames exactly: counting within one
+            // loop keeps every frame's time as exact as the first loop's.
+            n = (n + 1) % ANIMATION.frames();
         }
     }
 }

@@ -8,73 +8,110 @@ use embedded_graphics::pixelcolor::BinaryColor;
 use embedded_graphics::prelude::*;
 use embedded_graphics::text::{Baseline, Text};
 use embedded_raytracer::dither::DitherExt as _;
-use embedded_raytracer::{Camera, CameraError, FrameError, IntegerError, Render, Scene};
-
-/// Which kernel drew a frame.
-pub enum Kernel {
-    Integer,
-    F32,
-}
+use embedded_raytracer::motion::{Animation, MotionError};
+use embedded_raytracer::{
+    Arithmetic, CameraError, CameraParams, FrameError, FrameStats, Incremental, Method, Render, Scene,
+};
 
 /// Why a frame was not drawn or not shown.
 pub enum Failed<E> {
+    Motion(MotionError),
     Camera(CameraError),
     Frame(FrameError),
     Display(E),
 }
 
-/// One frame, in one call: the integer kernel, or the `f32` kernel where the integer
-/// kernel's rule refuses the frame (after `check`, since `draw` leaves a frame it
-/// cannot draw exactly untouched), both through the 8×8 ordered dither.
-pub fn frame<D, const N: usize>(
+/// The scene at rest, its camera (at the panel's size) and its motion.
+pub struct Film<'a, const N: usize, const M: usize> {
+    pub scene: &'a Scene<N>,
+    pub camera: CameraParams,
+    pub animation: &'a Animation<M>,
+}
+
+/// Frame `k` of `film` into `scene` (a working copy) and onto `display` through
+/// `shown` and the 8×8 ordered dither: only what changed since the frame `shown` remembers is traced and
+/// sent. The integer kernel, or the `f32` kernel where the integer kernel's rule
+/// refuses the frame, after `check` (a frame `f32` cannot draw exactly is refused
+/// rather than left half-drawn). Returns the kernel that drew it. After a display
+/// error the display's content is unknown: the next frame is drawn whole.
+pub fn frame<D, const N: usize, const M: usize>(
     display: &mut D,
-    scene: &Scene<N>,
-    camera: Result<Camera, CameraError>,
-) -> Result<Kernel, Failed<D::Error>>
+    shown: &mut Incremental<N>,
+    film: &Film<'_, N, M>,
+    k: u32,
+    scene: &mut Scene<N>,
+) -> Result<(Arithmetic, FrameStats), Failed<D::Error>>
 where
     D: DrawTarget<Color = BinaryColor>,
 {
-    let camera = camera.map_err(Failed::Camera)?;
-    let render = Render::new(scene, &camera);
-    match render.draw_integer(&mut display.dithered()) {
-        Ok(()) => Ok(Kernel::Integer),
-        Err(IntegerError::Target(e)) => Err(Failed::Display(e)),
-        Err(_refused) => {
-            render.check().map_err(Failed::Frame)?;
-            render.draw(&mut display.dithered()).map_err(Failed::Display)?;
-            Ok(Kernel::F32)
+    let mut params = film.camera;
+    film.animation
+        .apply_frame(film.scene, &film.camera, k, scene, &mut params)
+        .map_err(Failed::Motion)?;
+    let camera = params.build().map_err(Failed::Camera)?;
+    let render = Render::new(scene, &camera).with_method(Method::INTEGER);
+    render.check().map_err(Failed::Frame)?;
+    match shown.draw(&render, &mut display.dithered()) {
+        Ok(stats) => match stats.refused {
+            Some(why) => Err(Failed::Frame(why)),
+            None => Ok((render.arithmetic(), stats)),
+        },
+        Err(e) => {
+            shown.invalidate();
+            Err(Failed::Display(e))
         }
     }
 }
 
 /// `text` lit on dark from the top-left corner, cut into lines of the panel's width
-/// (ASCII: the library's messages are).
-pub fn show<D: DrawTarget<Color = BinaryColor>>(display: &mut D, text: &str) -> Result<(), D::Error> {
+/// (ASCII: the library's messages are); `shown` is told which pixels of the picture it
+/// covered, drawn or not, so that the next frame restores them.
+pub fn show<D, const N: usize>(
+    display: &mut D,
+    shown: &mut Incremental<N>,
+    text: &str,
+) -> Result<(), D::Error>
+where
+    D: DrawTarget<Color = BinaryColor>,
+{
     let style = MonoTextStyleBuilder::new()
         .font(&FONT_6X10)
         .text_color(BinaryColor::On)
         .background_color(BinaryColor::Off)
         .build();
     let per_line = (display.bounding_box().size.width as usize / 6).max(1);
+    let mut result = Ok(());
     for (row, line) in text.as_bytes().chunks(per_line).enumerate() {
         let line = core::str::from_utf8(line).unwrap_or("?");
-        Text::with_baseline(line, Point::new(0, 10 * row as i32), style, Baseline::Top).draw(display)?;
+        let text = Text::with_baseline(line, Point::new(0, 10 * row as i32), style, Baseline::Top);
+        shown.invalidate_area(text.bounding_box());
+        result = result.and(text.draw(display).map(|_| ()));
     }
-    Ok(())
+    result
 }
 
-/// The status line: the kernel and its frame rate, or the error.
+/// The status line: the kernel, its frame rate and the share of the panel sent, or the
+/// error.
 pub fn status<E: Debug>(
-    drawn: &Result<Kernel, Failed<E>>,
+    drawn: &Result<(Arithmetic, FrameStats), Failed<E>>,
     us: u64,
+    pixels: u32,
     flush_errors: u32,
 ) -> heapless::String<256> {
     let mut s = heapless::String::new();
     let tenths = 10_000_000 / us.max(1);
+    let share = |n: u32| u64::from(n) * 100 / u64::from(pixels.max(1));
     // A `String` only fails when full; 256 bytes hold every message here.
     let written = match drawn {
-        Ok(Kernel::Integer) => write!(s, "int {}.{} fps", tenths / 10, tenths % 10),
-        Ok(Kernel::F32) => write!(s, "f32 {}.{} fps", tenths / 10, tenths % 10),
+        Ok((arithmetic, stats)) => {
+            let kernel = match arithmetic {
+                Arithmetic::Integer => "int",
+                _ => "f32",
+            };
+            let (fps, tenth, sent) = (tenths / 10, tenths % 10, share(stats.sent));
+            write!(s, "{kernel} {fps}.{tenth}fps {sent}%")
+        }
+        Err(Failed::Motion(e)) => write!(s, "motion: {e}"),
         Err(Failed::Camera(e)) => write!(s, "camera: {e}"),
         Err(Failed::Frame(e)) => write!(s, "{e}"),
         Err(Failed::Display(e)) => write!(s, "display: {e:?}"),

@@ -1,9 +1,11 @@
 //! Raspberry Pi Pico (RP2040, Cortex-M0+, no FPU) driving a 128×64 SSD1306 OLED over
-//! I²C: the integer kernel draws the lab scene through the library's ordered dither
-//! (`embedded_raytracer::dither`: shading as a dot density on a 1-bit panel) into the
-//! driver's frame buffer, the camera orbiting 5° a frame (`orbit.rs`); where the
-//! integer kernel's rule refuses a frame, the `f32` kernel draws it. The top line says
-//! which kernel drew the last frame and its frame rate, or why the frame was not drawn.
+//! I²C: the integer kernel draws `scenes/circling.toml` (three spheres circling, the
+//! library's motion) through the library's ordered dither (`embedded_raytracer::dither`:
+//! shading as a dot density on a 1-bit panel) into the driver's frame buffer, frame
+//! after frame through `Incremental` (only what the moving spheres can have changed),
+//! and the driver sends the buffer's changed area; where the integer kernel's rule refuses a frame, the `f32` kernel draws it.
+//! The top line says which kernel drew the last frame, its frame rate and the share of
+//! the panel drawn, or why the frame was not drawn.
 //!
 //! ```sh
 //! cargo build --release
@@ -16,7 +18,6 @@
 #![no_main]
 
 mod frame;
-mod orbit;
 mod scenes;
 
 use embedded_graphics::prelude::*;
@@ -79,25 +80,32 @@ fn main() -> ! {
     }
 
     let size = display.bounding_box().size;
-    let mut angle = 0.0f32;
+    let film = frame::Film {
+        scene: &scenes::CIRCLING,
+        camera: scenes::CIRCLING_CAMERA.with_size(size),
+        animation: &scenes::CIRCLING_ANIMATION,
+    };
+    let mut scene = scenes::CIRCLING.clone();
+    let mut shown = embedded_raytracer::Incremental::new();
     let mut flush_errors = 0u32;
     let mut last_us = 0u64;
+    let mut k = 0u32;
     loop {
         let start = timer.get_counter().ticks();
-        // The frame into the driver's buffer, the last frame's figures over it, then
-        // the buffer to the panel (1 KiB over I²C).
-        let drawn = frame::frame(
-            &mut display,
-            &scenes::LAB,
-            orbit::orbit(&scenes::LAB_CAMERA, angle, size),
-        );
-        let shown = frame::show(&mut display, &frame::status(&drawn, last_us, flush_errors));
-        // Drawing into the buffer cannot fail (its error type is the flush's); the
-        // flush's errors are counted and shown once the panel takes a frame again.
-        if shown.is_err() || display.flush().is_err() {
+        // The frame's changes into the driver's buffer, the last frame's figures over
+        // it, then the buffer's changed area to the panel (at most 1 KiB over I²C).
+        let drawn = frame::frame(&mut display, &mut shown, &film, k, &mut scene);
+        let line = frame::status(&drawn, last_us, size.width * size.height, flush_errors);
+        let shown_line = frame::show(&mut display, &mut shown, &line);
+        // Drawing into the buffer cannot fail (its error type is the flush's); a
+        // failed flush leaves the panel unknown, so the next frame is drawn whole.
+        if shown_line.is_err() || display.flush().is_err() {
             flush_errors = flush_errors.saturating_add(1);
+            shown.invalidate();
         }
         last_us = timer.get_counter().ticks().wrapping_sub(start);
-        angle = orbit::next_angle(angle);
+        // The motion repeats after `frames()` frames exactly: counting within one
+        // loop keeps every frame's time as exact as the first loop's.
+        k = (k + 1) % film.animation.frames();
     }
 }

@@ -1,10 +1,13 @@
 //! Raspberry Pi Pico (RP2040, two Cortex-M0+ cores at 133 MHz) driving a 240×240 ST7789
-//! over SPI1: both cores trace the lab scene, in alternate bands of 20 rows
+//! over SPI1: `scenes/circling.toml`'s spheres circle (the library's motion), and
+//! `Incremental::update` says frame by frame what changed since the frame the display
+//! shows. A whole frame is traced by both cores, in alternate bands of 20 rows
 //! (`split.rs`: core 0 bands 0, 2, …, 10, core 1 bands 1, 3, …, 11), each core into its
-//! own band buffer, and DMA sends the bands to the display in order. The camera orbits
-//! the lab scene's look-at point, 5° per frame, and the top-left corner shows the last
-//! frame's rate, time and how long core 0 waited in it (the RP2040's 1 MHz timer) — or,
-//! if a band could not be traced (it goes out dark red), which band and why.
+//! own band buffer, and DMA sends the bands to the display in order; any other frame
+//! (only runs changed) core 0 traces and sends alone, each run in its own address
+//! window (`runs.rs`). The top-left corner shows the last frame's rate, time and how
+//! long core 0 waited in it (the RP2040's 1 MHz timer) — or, if a band could not be
+//! traced (it goes out dark red), which band and why.
 //!
 //! ```sh
 //! cd boards/rp2040 && cargo build --release
@@ -15,7 +18,9 @@
 //! Builds in CI; not tested on hardware. Wiring (README, "Raspberry Pi Pico (RP2040), two
 //! cores"): SCK GP10, MOSI GP11, CS GP9, DC GP8, RST GP12, BL GP13.
 //!
-//! The hand-off, per frame (core 0 owns SPI1 and the DMA channel):
+//! At the start of each frame core 0 writes `WHOLE` or `RUNS` on the SIO FIFO; for
+//! `RUNS` core 1 only steps the motion. The hand-off of a whole frame (core 0 owns SPI1
+//! and the DMA channel):
 //! 1. core 0 traces band 0 (with the last frame's figures over it), sets the address
 //!    window (CASET, RASET: the whole panel) and sends RAMWR, byte by byte with DC low
 //!    for the command bytes; then DC high, and band 0 goes out by DMA (channel 0 into
@@ -35,8 +40,8 @@
 //! mailbox, writes `k` to the FIFO, and waits for the word `k` back (band k has gone out)
 //! before it takes the buffer back for its next band. So a band goes out only after the
 //! one before it, and a core reuses its buffer only once its transfer has finished.
-//! Both cores step the camera the same way (the same soft-float code on the same
-//! numbers), so they trace the same frame without exchanging cameras.
+//! Both cores apply the motion the same way (the same soft-float code on the same
+//! numbers), so they trace the same frame without exchanging scenes.
 //!
 //! The bands are traced straight into the ST7789's wire format
 //! (`boards/stm32f407/src/st7789_band.rs`: Rgb565, high byte first), as in
@@ -46,10 +51,10 @@
 
 mod scenes;
 
-mod orbit;
+mod runs;
 mod split;
 
-// `trace_band`, `BANDS` and `BAND_PIXELS` there are the STM32 example's 16-row bands;
+// `BANDS` and `BAND_PIXELS` there are the STM32 example's 16-row bands;
 // here the bands come from `split.rs`.
 #[allow(dead_code)]
 mod st7789_band;
@@ -61,10 +66,11 @@ use core::ops::Range;
 
 use critical_section::Mutex;
 use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::SpiBus;
 use embedded_hal_bus::spi::ExclusiveDevice;
-use embedded_raytracer::{Camera, IntegerError, Render};
+use embedded_raytracer::{Camera, Incremental, IntegerError, Method, Render, Scene};
 use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
 use panic_halt as _;
 use rp2040_hal::{
@@ -116,6 +122,14 @@ const _: () = assert!(split::CORES == 2, "two cores, alternate bands");
 // `draw_label` draws into the first `st7789_band::BAND_ROWS` rows of band 0.
 const _: () = assert!(BAND_ROWS >= st7789_band::BAND_ROWS, "the label fits in band 0");
 
+/// Core 0's word to core 1 at the start of a frame: both cores trace it (`WHOLE`), or
+/// core 0 sends its changed runs alone (`RUNS`). Above any band index.
+const WHOLE: u32 = 0x5748_4F4C;
+const RUNS: u32 = 0x5255_4E53;
+
+/// The label's rows over the picture (`draw_label`: 6×10 text at (2, 2)).
+const LABEL: Rectangle = Rectangle::new(Point::zero(), Size::new(WIDTH, 12));
+
 /// ST7789 commands (datasheet, "System function command table 1").
 const CASET: u8 = 0x2A;
 const RASET: u8 = 0x2B;
@@ -138,23 +152,53 @@ fn rows(k: u32) -> Range<u32> {
     split::band_rows(k, HEIGHT, BAND_ROWS)
 }
 
-/// The camera of the frame at orbit angle `angle` (`orbit.rs`), at the panel's size.
-fn camera_at(angle: f32) -> Option<Camera> {
-    orbit::camera_at(angle, Size::new(WIDTH, HEIGHT))
+/// The lab camera at the panel's size; `None` if the kernel rejects it.
+fn camera() -> Option<Camera> {
+    scenes::CIRCLING_CAMERA
+        .with_size(Size::new(WIDTH, HEIGHT))
+        .build()
+        .ok()
+}
+
+/// The scene of frame `k` of the motion (`scenes::CIRCLING_ANIMATION`) into `scene`;
+/// both cores compute their own copy alike, so they trace the same frame without
+/// exchanging scenes. The motion moves no camera. `None` if the motion is refused.
+fn scene_at(scene: &mut Scene<3>, k: u32) -> Option<&Scene<3>> {
+    let mut params = scenes::CIRCLING_CAMERA;
+    scenes::CIRCLING_ANIMATION
+        .apply_frame(&scenes::CIRCLING, &scenes::CIRCLING_CAMERA, k, scene, &mut params)
+        .ok()
+        .map(|()| &*scene)
+}
+
+/// The next frame's number: the motion repeats after `frames()` frames exactly, so
+/// counting within one loop keeps every frame's time as exact as the first loop's.
+fn next(k: u32) -> u32 {
+    (k + 1) % scenes::CIRCLING_ANIMATION.frames()
 }
 
 /// The first band of the frame that could not be traced, and why, from either core:
 /// core 0 shows it in the next frame's top line instead of the frame time.
 static REFUSED: Mutex<Cell<Option<(u32, &'static str)>>> = Mutex::new(Cell::new(None));
 
-/// Traces band `k` (`rows`) of the lab scene seen by `camera` into `buf` with the
-/// integer kernel alone (`Render::draw_band_integer`: no `f32` render is linked; its
-/// rule takes every frame of the orbit, `lab/tests/lab/rp2040_split.rs`). Without a
-/// camera or if the band is refused, the band is dark red and `REFUSED` says why.
-fn trace(camera: Option<&Camera>, k: u32, rows: Range<u32>, buf: &mut [WireRgb565]) {
-    let why = match camera.map(|camera| Render::new(&scenes::LAB, camera).draw_band_integer(rows, buf)) {
+/// The scene's frame on this panel, as both cores trace it: the integer kernel's
+/// method, so that `Incremental`'s plan follows the integer kernel's rule.
+type Frame<'a> = Render<'a, 3, WireRgb565>;
+
+/// The frame of `scene` seen by `camera`, if both exist.
+fn frame<'a>(scene: Option<&'a Scene<3>>, camera: Option<&'a Camera>) -> Option<Frame<'a>> {
+    Some(Render::new(scene?, camera?).with_method(Method::INTEGER))
+}
+
+/// Traces band `k` (`rows`) of `frame` into `buf` with the integer kernel alone
+/// (`Render::draw_band_integer`: no `f32` render is linked; its rule takes every frame
+/// of the animation, `lab/tests/lab/rp2040_split.rs`). Without a frame (the camera or
+/// the moved sphere refused) or if the band is refused, the band is dark red and
+/// `REFUSED` says why.
+fn trace(frame: Option<&Frame<'_>>, k: u32, rows: Range<u32>, buf: &mut [WireRgb565]) {
+    let why = match frame.map(|frame| frame.draw_band_integer(rows, buf)) {
         Some(Ok(())) => return,
-        None => "camera refused",
+        None => "camera or scene refused",
         Some(Err(IntegerError::Refused)) => "integer kernel refused",
         Some(Err(_)) => "band rows or buffer wrong",
     };
@@ -188,26 +232,36 @@ fn put_mailbox(band: Band) {
     critical_section::with(|cs| MAILBOX.borrow(cs).set(Some(band)));
 }
 
-/// Core 1: traces its bands (`split::core_bands(1, …)`), frame after frame, into its
-/// one buffer, handing each to core 0 and taking it back once it has gone out.
+/// Core 1: frame after frame, waits for core 0's word for the frame; for a whole frame
+/// (`WHOLE`) traces its bands (`split::core_bands(1, …)`) into its one buffer, handing
+/// each to core 0 and taking it back once it has gone out; for a frame of changed runs
+/// (`RUNS`, which core 0 sends alone) only steps the animation.
 fn core1(mut buf: Band) -> ! {
     // SAFETY: core 1 uses only the SIO block, and of it only its FIFO ends: every core
     // reads and writes its own ends at the same addresses; core 0's `Sio` never
     // reaches core 1's.
     let pac = unsafe { pac::Peripherals::steal() };
     let mut fifo = Sio::new(pac.SIO).fifo;
-    let mut angle = 0.0f32;
+    let camera = camera();
+    let mut scene = scenes::CIRCLING.clone();
+    let mut n = 0u32;
     loop {
-        let camera = camera_at(angle);
-        for (k, band_rows) in split::core_bands(1, HEIGHT, BAND_ROWS) {
-            trace(camera.as_ref(), k, band_rows, &mut buf[..]);
-            put_mailbox(buf);
-            fifo.write_blocking(k);
-            // Band k has gone out: the buffer is back.
-            expect_word(&mut fifo, k);
-            buf = take_mailbox();
+        let frame = frame(scene_at(&mut scene, n), camera.as_ref());
+        match fifo.read_blocking() {
+            WHOLE => {
+                for (k, band_rows) in split::core_bands(1, HEIGHT, BAND_ROWS) {
+                    trace(frame.as_ref(), k, band_rows, &mut buf[..]);
+                    put_mailbox(buf);
+                    fifo.write_blocking(k);
+                    // Band k has gone out: the buffer is back.
+                    expect_word(&mut fifo, k);
+                    buf = take_mailbox();
+                }
+            }
+            RUNS => {}
+            _ => panic!("the cores disagree on the frame"),
         }
-        angle = orbit::next_angle(angle);
+        n = next(n);
     }
 }
 
@@ -251,12 +305,20 @@ fn write_blocking(spi: &mut impl SpiBus<u8, Error = Infallible>, bytes: &[u8]) {
     let Ok(()) = spi.flush();
 }
 
-/// Step 1's commands: the address window (the whole panel) and RAMWR; leaves DC high,
-/// ready for the pixels.
-fn start_frame(spi: &mut impl SpiBus<u8, Error = Infallible>, dc: &mut impl OutputPin<Error = Infallible>) {
-    let [x1_hi, x1_lo] = ((WIDTH - 1) as u16).to_be_bytes();
-    let [y1_hi, y1_lo] = ((HEIGHT - 1) as u16).to_be_bytes();
-    for (command, params) in [(CASET, [0, 0, x1_hi, x1_lo]), (RASET, [0, 0, y1_hi, y1_lo])] {
+/// The address window `x` × `y` (CASET, RASET) and RAMWR; leaves DC high, ready for
+/// the pixels. Step 1's is the whole panel.
+fn start_window(
+    spi: &mut impl SpiBus<u8, Error = Infallible>,
+    dc: &mut impl OutputPin<Error = Infallible>,
+    x: Range<u32>,
+    y: Range<u32>,
+) {
+    let bounds = |r: Range<u32>| {
+        let [a_hi, a_lo] = (r.start as u16).to_be_bytes();
+        let [b_hi, b_lo] = (r.end.saturating_sub(1) as u16).to_be_bytes();
+        [a_hi, a_lo, b_hi, b_lo]
+    };
+    for (command, params) in [(CASET, bounds(x)), (RASET, bounds(y))] {
         let Ok(()) = dc.set_low();
         write_blocking(spi, &[command]);
         let Ok(()) = dc.set_high();
@@ -265,6 +327,55 @@ fn start_frame(spi: &mut impl SpiBus<u8, Error = Infallible>, dc: &mut impl Outp
     let Ok(()) = dc.set_low();
     write_blocking(spi, &[RAMWR]);
     let Ok(()) = dc.set_high();
+}
+
+/// SPI1 and the DC pin as the controller's wire for a frame of changed runs
+/// (`runs.rs`), written by core 0 (CS low): between two runs it must set the next
+/// window anyway, and a run is short.
+struct Core<'a, S, D> {
+    spi: &'a mut S,
+    dc: &'a mut D,
+}
+
+impl<S: SpiBus<u8, Error = Infallible>, D: OutputPin<Error = Infallible>> runs::Wire<WireRgb565>
+    for Core<'_, S, D>
+{
+    fn window(&mut self, x: Range<u32>, y: Range<u32>) {
+        start_window(self.spi, self.dc, x, y);
+    }
+
+    fn pixels(&mut self, pixels: &[WireRgb565]) {
+        for pixel in pixels {
+            let Ok(()) = self.spi.write(&pixel.bytes());
+        }
+        let Ok(()) = self.spi.flush();
+    }
+}
+
+/// The top line: the first band the last frame could not trace and why, or the last
+/// frame's rate, time and core 0's wait (µs).
+fn label(refused: Option<(u32, &str)>, shown: Option<(u64, u64)>) -> heapless::String<40> {
+    let mut label = heapless::String::<40>::new();
+    let written = match (refused, shown) {
+        (Some((k, why)), _) => write!(label, "band {k}: {why}"),
+        (None, Some((frame, wait))) => {
+            let (frame_ms, frame_tenth) = tenths_of_ms(frame);
+            let (wait_ms, wait_tenth) = tenths_of_ms(wait);
+            let fps_tenths = 10_000_000 / frame.max(1);
+            write!(
+                label,
+                "{}.{} fps {frame_ms}.{frame_tenth} ms wait {wait_ms}.{wait_tenth}",
+                fps_tenths / 10,
+                fps_tenths % 10
+            )
+        }
+        (None, None) => Ok(()),
+    };
+    // 40 characters fill the line; a longer label is cut.
+    if written.is_err() {
+        label.truncate(39);
+    }
+    label
 }
 
 /// Microseconds as milliseconds with one decimal, for the label.
@@ -348,7 +459,11 @@ fn main() -> ! {
     let mut fifo = sio.fifo;
 
     let mut ch = pac.DMA.split(&mut pac.RESETS).ch0;
-    let mut angle = 0.0f32;
+    let camera = camera();
+    let mut scene = scenes::CIRCLING.clone();
+    // What the display shows, for the next frame's changes.
+    let mut display_has = Incremental::<3>::new();
+    let mut n = 0u32;
     // The timer at the last frame's start, and how long core 0 has waited since then
     // (for core 1's bands and for the wire), in µs.
     let mut last_start: Option<u64> = None;
@@ -358,36 +473,42 @@ fn main() -> ! {
         let shown = last_start.map(|last| (start.wrapping_sub(last), waited));
         last_start = Some(start);
         waited = 0;
-        let camera = camera_at(angle);
+        let frame = frame(scene_at(&mut scene, n), camera.as_ref());
+        let changes = frame.as_ref().map(|frame| display_has.update(frame));
+        let refused = critical_section::with(|cs| REFUSED.borrow(cs).take());
+        let label = label(refused, shown);
+        if let (Some(changes), Some(frame)) = (&changes, &frame) {
+            if !(changes.is_full() || changes.refused().is_some()) {
+                // Only runs changed: core 0
+                // sends them alone, core 1 skips the frame.
+                fifo.write_blocking(RUNS);
+                let Ok(()) = cs.set_low();
+                let mut wire = Core {
+                    spi: &mut spi,
+                    dc: &mut dc,
+                };
+                let label = |band: &mut [WireRgb565]| draw_label(band, &label);
+                if let Err(e) = runs::send_runs(changes, frame, BAND_ROWS, &mut own[..], label, &mut wire) {
+                    let why = match e {
+                        IntegerError::Refused => "integer kernel refused",
+                        _ => "display error",
+                    };
+                    critical_section::with(|cs| REFUSED.borrow(cs).set(Some((0, why))));
+                    display_has.invalidate();
+                }
+                let Ok(()) = cs.set_high();
+                display_has.invalidate_area(LABEL);
+                n = next(n);
+                continue;
+            }
+        }
+        fifo.write_blocking(WHOLE);
 
         // Step 1: band 0 with the last frame's figures, the address window, band 0 out.
-        trace(camera.as_ref(), 0, rows(0), &mut own[..]);
-        // The top line: the first band the last frame could not trace and why, or the
-        // last frame's rate, time and core 0's wait.
-        let refused = critical_section::with(|cs| REFUSED.borrow(cs).take());
-        let mut label = heapless::String::<40>::new();
-        let written = match (refused, shown) {
-            (Some((k, why)), _) => write!(label, "band {k}: {why}"),
-            (None, Some((frame, wait))) => {
-                let (frame_ms, frame_tenth) = tenths_of_ms(frame);
-                let (wait_ms, wait_tenth) = tenths_of_ms(wait);
-                let fps_tenths = 10_000_000 / frame.max(1);
-                write!(
-                    label,
-                    "{}.{} fps {frame_ms}.{frame_tenth} ms wait {wait_ms}.{wait_tenth}",
-                    fps_tenths / 10,
-                    fps_tenths % 10
-                )
-            }
-            (None, None) => Ok(()),
-        };
-        // 40 characters fill the line; a longer label is cut.
-        if written.is_err() {
-            label.truncate(39);
-        }
+        trace(frame.as_ref(), 0, rows(0), &mut own[..]);
         draw_label(&mut own[..], &label);
         let Ok(()) = cs.set_low();
-        start_frame(&mut spi, &mut dc);
+        start_window(&mut spi, &mut dc, 0..WIDTH, 0..HEIGHT);
         let mut transfer = single_buffer::Config::new(ch, own, spi).start();
         // Core 0's buffer while it is not on the wire.
         let mut free: Option<Band> = None;
@@ -405,7 +526,7 @@ fn main() -> ! {
                 let Some(buf) = free.take() else {
                     panic!("core 0's buffer is still on the wire");
                 };
-                trace(camera.as_ref(), k, rows(k), &mut buf[..]);
+                trace(frame.as_ref(), k, rows(k), &mut buf[..]);
                 single_buffer::Config::new(c, buf, s).start()
             } else {
                 // Band k is core 1's; band k − 1, core 0's, comes back to core 0.
@@ -436,6 +557,12 @@ fn main() -> ! {
                 None => panic!("core 0's buffer is still on the wire"),
             }
         };
-        angle = orbit::next_angle(angle);
+        // The label is over the picture; a band traced dark red, or no frame at all,
+        // leaves a picture that is no frame: the next one is drawn whole.
+        display_has.invalidate_area(LABEL);
+        if frame.is_none() || critical_section::with(|cs| REFUSED.borrow(cs).get().is_some()) {
+            display_has.invalidate();
+        }
+        n = next(n);
     }
 }

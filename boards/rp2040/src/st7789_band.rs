@@ -1,14 +1,11 @@
-//! The DMA band path: the ST7789's wire pixel format, tracing one band of the lab scene
-//! into it, and the frame-time label drawn over a band.
+//! The DMA band path: the ST7789's wire pixel format, and the frame-time label drawn
+//! over a band.
 
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyleBuilder};
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::text::{Baseline, Text};
-use embedded_raytracer::{Camera, Render};
-
-use crate::scenes;
 
 /// The panel, in pixels.
 pub const WIDTH: u32 = 240;
@@ -62,19 +59,6 @@ impl From<Rgb888> for WireRgb565 {
 // length `ReadTarget`'s default method computes from `size_of_val`).
 unsafe impl embedded_dma::ReadTarget for WireRgb565 {
     type Word = u8;
-}
-
-/// Traces band `k` (rows `16k .. 16k + 16`) of the lab scene seen by `camera` into
-/// `buf`. Without a camera (its parameters were rejected) or if the band is refused,
-/// the band is black: the frame still goes out whole, so the display's write pointer
-/// stays in step. Not inlined: one copy of the render loop for every call site.
-#[inline(never)]
-pub fn trace_band(camera: Option<&Camera>, k: u32, buf: &mut [WireRgb565]) {
-    let rows = k * BAND_ROWS..(k + 1) * BAND_ROWS;
-    let traced = camera.is_some_and(|camera| Render::new(&scenes::LAB, camera).draw_band(rows, buf).is_ok());
-    if !traced {
-        buf.fill(WireRgb565::BLACK);
-    }
 }
 
 /// Draws `text` (white on black, 6×10 font) at (2, 2) over band 0 in `buf`.

@@ -7,37 +7,68 @@ use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyleBuilder};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_graphics::text::{Baseline, Text};
-use embedded_raytracer::{Camera, CameraError, FrameError, Render, Scene};
+use embedded_raytracer::motion::{Animation, MotionError};
+use embedded_raytracer::{CameraError, CameraParams, FrameError, FrameStats, Incremental, Render, Scene};
 
 /// Why a frame was not drawn.
 pub enum Failed<E> {
+    Motion(MotionError),
     Camera(CameraError),
     Frame(FrameError),
     Display(E),
 }
 
-/// One frame, in one call. `check` first: `draw` leaves a frame it cannot draw exactly
-/// untouched, which would look like a frozen picture.
-pub fn frame<
-    D: DrawTarget<Color = Rgb565>,
-    const N: usize,
-    const L: usize,
-    const P: usize,
-    const K: usize,
->(
+/// The scene at rest, its camera (at the panel's size) and its motion.
+pub struct Film<'a, const N: usize, const L: usize, const P: usize, const K: usize, const M: usize> {
+    pub scene: &'a Scene<N, L, P, K>,
+    pub camera: CameraParams,
+    pub animation: &'a Animation<M>,
+}
+
+/// Frame `k` of `film` into `scene` (a working copy) and onto `display`: only what
+/// changed since the frame `shown` remembers is traced and sent. A frame the `f32`
+/// kernel cannot draw exactly is refused (`check`) rather than left half-drawn; after
+/// a display error the display's content is unknown, so the next frame is drawn whole.
+pub fn frame<D, const N: usize, const L: usize, const P: usize, const K: usize, const M: usize>(
     display: &mut D,
-    scene: &Scene<N, L, P, K>,
-    camera: Result<Camera, CameraError>,
-) -> Result<(), Failed<D::Error>> {
-    let camera = camera.map_err(Failed::Camera)?;
+    shown: &mut Incremental<N, L, P, K>,
+    film: &Film<'_, N, L, P, K, M>,
+    k: u32,
+    scene: &mut Scene<N, L, P, K>,
+) -> Result<FrameStats, Failed<D::Error>>
+where
+    D: DrawTarget<Color = Rgb565>,
+{
+    let mut params = film.camera;
+    film.animation
+        .apply_frame(film.scene, &film.camera, k, scene, &mut params)
+        .map_err(Failed::Motion)?;
+    let camera = params.build().map_err(Failed::Camera)?;
     let render = Render::new(scene, &camera);
     render.check().map_err(Failed::Frame)?;
-    render.draw(display).map_err(Failed::Display)
+    match shown.draw(&render, display) {
+        Ok(stats) => match stats.refused {
+            Some(why) => Err(Failed::Frame(why)),
+            None => Ok(stats),
+        },
+        Err(e) => {
+            shown.invalidate();
+            Err(Failed::Display(e))
+        }
+    }
 }
 
 /// `text` in white on black from the top-left corner, cut into lines of the panel's
-/// width (ASCII: the library's messages are).
-pub fn show<D: DrawTarget<Color = Rgb565>>(display: &mut D, text: &str) -> Result<(), D::Error> {
+/// width (ASCII: the library's messages are); `shown` is told which pixels of the
+/// picture it covered, drawn or not, so that the next frame restores them.
+pub fn show<D, const N: usize, const L: usize, const P: usize, const K: usize>(
+    display: &mut D,
+    shown: &mut Incremental<N, L, P, K>,
+    text: &str,
+) -> Result<(), D::Error>
+where
+    D: DrawTarget<Color = Rgb565>,
+{
     let style = MonoTextStyleBuilder::new()
         .font(&FONT_6X10)
         .text_color(Rgb565::WHITE)
@@ -46,24 +77,38 @@ pub fn show<D: DrawTarget<Color = Rgb565>>(display: &mut D, text: &str) -> Resul
     let per_line = (display.bounding_box().size.width as usize / 6)
         .saturating_sub(1)
         .max(1);
+    let mut result = Ok(());
     for (row, line) in text.as_bytes().chunks(per_line).enumerate() {
         let line = core::str::from_utf8(line).unwrap_or("?");
-        Text::with_baseline(line, Point::new(2, 2 + 10 * row as i32), style, Baseline::Top).draw(display)?;
+        let text = Text::with_baseline(line, Point::new(2, 2 + 10 * row as i32), style, Baseline::Top);
+        shown.invalidate_area(text.bounding_box());
+        result = result.and(text.draw(display).map(|_| ()));
     }
-    Ok(())
+    result
 }
 
-/// The status line: the frame rate, or the error.
+/// The status line: the frame rate and the share of the panel traced and sent, or the
+/// error.
 pub fn status<E: Debug>(
-    drawn: &Result<(), Failed<E>>,
+    drawn: &Result<FrameStats, Failed<E>>,
     us: u64,
+    pixels: u32,
     display_errors: u32,
 ) -> heapless::String<256> {
     let mut s = heapless::String::new();
     let tenths = 10_000_000 / us.max(1);
+    let share = |n: u32| u64::from(n) * 100 / u64::from(pixels.max(1));
     // A `String` only fails when full; 256 bytes hold every message here.
     let written = match drawn {
-        Ok(()) => write!(s, "f32 {}.{} fps", tenths / 10, tenths % 10),
+        Ok(stats) => write!(
+            s,
+            "f32 {}.{} fps traced {}% sent {}%",
+            tenths / 10,
+            tenths % 10,
+            share(stats.traced),
+            share(stats.sent)
+        ),
+        Err(Failed::Motion(e)) => write!(s, "motion: {e}"),
         Err(Failed::Camera(e)) => write!(s, "camera: {e}"),
         Err(Failed::Frame(e)) => write!(s, "{e}"),
         Err(Failed::Display(e)) => write!(s, "display error: {e:?}"),

@@ -1,29 +1,38 @@
 //! The STM32F407 + ST7789 board of the root example `examples/stm32f407_st7789` (same
-//! wiring), with tracing
-//! overlapped with the SPI transfer: the frame is traced in bands of 16 rows into two
-//! band buffers, and while DMA2 (stream 3, channel 3: SPI1_TX) sends one band to the
-//! display, the core traces the next into the other. SPI1 runs at 42 MHz (APB2 84 MHz
-//! / 2, the fastest SPI1 clock). The camera orbits the lab scene's look-at point, 5° per
-//! frame, and the top-left corner shows the last frame's rate, time and how much of it
-//! the core spent waiting for the wire (DWT cycle counter) — or, if a band could not be
-//! traced (it goes out dark red), why.
+//! wiring), with incremental frames and tracing overlapped with the SPI transfer. The
+//! lit ball of `scenes/bounce.toml` bounces on its checkered floor (the library's
+//! motion); `Incremental::update` says, frame by frame, what changed since the frame
+//! the display shows:
+//! - a whole frame (the first, or one after an error) is traced in bands of 16 rows into
+//!   two band buffers, and while DMA2 (stream 3, channel 3: SPI1_TX) sends one band to
+//!   the display, the core traces the next into the other;
+//! - any other frame traces only the changed pixels of the bands that hold a changed
+//!   run (`Changes::draw_band`), and each run goes out in its own address window,
+//!   written by the core (between two runs it sets the next window anyway, and a run
+//!   is short).
+//!
+//! SPI1 runs at 42 MHz (APB2 84 MHz / 2, the fastest SPI1 clock). The top-left corner
+//! shows the last frame's rate, time, how much of it the core spent waiting for the
+//! wire (DWT cycle counter) and the share of the panel sent — or, if a band could not
+//! be traced (it goes out dark red), why; the label is drawn over band 0 and redrawn
+//! every frame (`Incremental::invalidate_area`).
 //!
 //! ```sh
 //! cargo build --release     # in boards/stm32f407: .cargo/config.toml sets the target
 //! cargo run --release       # flashes it with probe-rs (STM32F407VGTx) and runs it
 //! ```
 //!
-//! Builds in CI; not tested on hardware. Wiring: as the root example (README.md here), SCK PA5, MOSI PA7, DC PB0, RST PB1, CS PB12; PE3 high on the
-//! STM32F4DISCOVERY.
+//! Builds in CI; not tested on hardware. Wiring: as the root example (README.md here),
+//! SCK PA5, MOSI PA7, DC PB0, RST PB1, CS PB12; PE3 high on the STM32F4DISCOVERY.
 //!
-//! Per frame:
-//! 1. the address window (CASET, RASET: the whole 240×240 panel) and RAMWR, written
-//!    byte by byte on SPI1 with DC low for each command byte; then DC high for the data;
-//! 2. band 0 (already traced, see 4) goes out by DMA;
+//! A whole frame:
+//! 1. band 0, with the label over it; the address window (CASET, RASET: the whole
+//!    240×240 panel) and RAMWR, written byte by byte on SPI1 with DC low for each
+//!    command byte; then DC high for the data;
+//! 2. band 0 goes out by DMA;
 //! 3. for k = 1 … 14: trace band k into the free buffer, wait for the transfer in
 //!    flight, start band k and take back the buffer it freed;
-//! 4. while band 14 is on the wire: band 0 of the next frame, with the frame-time label
-//!    drawn over it; then wait for band 14 and for SPI1 to finish shifting it out.
+//! 4. wait for band 14 and for SPI1 to finish shifting it out.
 //!
 //! The bands are traced straight into the wire format: `WireRgb565`
 //! (`st7789_band.rs`) is a colour whose two bytes are the Rgb565 value
@@ -35,17 +44,23 @@
 #![no_std]
 #![no_main]
 
+mod frame;
 mod scenes;
+// `trace_band` there traces the lab scene as the file has it, for the lab's
+// `band_cycles` firmware; this one traces the moving scene (`trace` below).
+#[allow(dead_code)]
 mod st7789_band;
 
 mod fw {
     use core::fmt::Write as _;
+    use core::ops::Range;
 
     use cortex_m::peripheral::DWT;
     use cortex_m_rt::entry;
     use embedded_graphics::prelude::*;
+    use embedded_graphics::primitives::Rectangle;
     use embedded_hal_bus::spi::ExclusiveDevice;
-    use embedded_raytracer::{Camera, Vec3};
+    use embedded_raytracer::{BandError, Incremental, Render};
     use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
     use panic_halt as _;
     use stm32f4xx_hal::{
@@ -57,13 +72,9 @@ mod fw {
         spi::{Mode, Phase, Polarity, Spi},
     };
 
+    use crate::frame::{self, Wire};
     use crate::scenes;
-    use crate::st7789_band::{
-        draw_label, take_refused, trace_band, WireRgb565, BANDS, BAND_PIXELS, HEIGHT, WIDTH,
-    };
-
-    /// The orbit's step per frame (5°).
-    const STEP: f32 = 5.0 * (core::f32::consts::PI / 180.0);
+    use crate::st7789_band::{draw_label, WireRgb565, BANDS, BAND_PIXELS, BAND_ROWS, HEIGHT, WIDTH};
 
     /// ST7789 commands (datasheet, "System function command table 1").
     const CASET: u8 = 0x2A;
@@ -76,6 +87,9 @@ mod fw {
     /// SPI1 fed by DMA2 stream 3 on channel 3 (RM0090, "DMA2 request mapping").
     type BandTransfer = Transfer<Stream3<pac::DMA2>, 3, pac::SPI1, MemoryToPeripheral, Band>;
 
+    /// The scene's frame on this panel.
+    type Frame<'a> = Render<'a, 3, WireRgb565, 1, 1, 0>;
+
     /// Waits until SPI1 has shifted out everything written to it (TXE, then BSY: the
     /// reference manual's order), so that DC or CS may change.
     fn wait_idle(spi: &pac::SPI1) {
@@ -83,38 +97,102 @@ mod fw {
         while spi.sr().read().bsy().bit_is_set() {}
     }
 
-    /// Writes `bytes` on SPI1 without DMA, then waits until they are out.
-    fn write_blocking(spi: &pac::SPI1, bytes: &[u8]) {
+    /// Writes `bytes` on SPI1 without DMA (not waiting for the last to go out).
+    fn write(spi: &pac::SPI1, bytes: &[u8]) {
         for &byte in bytes {
             while spi.sr().read().txe().bit_is_clear() {}
             spi.dr().write(|w| w.dr().set(u16::from(byte)));
         }
-        wait_idle(spi);
     }
 
-    /// Step 1 of a frame: the address window (the whole panel) and RAMWR; leaves DC
-    /// high, ready for the pixels.
-    fn start_frame(
-        spi: &pac::SPI1,
-        dc: &mut impl embedded_hal::digital::OutputPin<Error = core::convert::Infallible>,
-    ) {
-        let [x1_hi, x1_lo] = ((WIDTH - 1) as u16).to_be_bytes();
-        let [y1_hi, y1_lo] = ((HEIGHT - 1) as u16).to_be_bytes();
-        for (command, params) in [(CASET, [0, 0, x1_hi, x1_lo]), (RASET, [0, 0, y1_hi, y1_lo])] {
-            let Ok(()) = dc.set_low();
-            write_blocking(spi, &[command]);
-            let Ok(()) = dc.set_high();
-            write_blocking(spi, &params);
+    /// SPI1 and the DC pin as the controller's wire, written by the core.
+    struct Core<'a, DC> {
+        spi: &'a pac::SPI1,
+        dc: &'a mut DC,
+    }
+
+    impl<DC: embedded_hal::digital::OutputPin<Error = core::convert::Infallible>> Wire<WireRgb565>
+        for Core<'_, DC>
+    {
+        /// The address window `x` × `y` and RAMWR; leaves DC high, ready for the pixels.
+        fn window(&mut self, x: Range<u32>, y: Range<u32>) {
+            let bounds = |r: Range<u32>| {
+                let [a_hi, a_lo] = (r.start as u16).to_be_bytes();
+                let [b_hi, b_lo] = (r.end.saturating_sub(1) as u16).to_be_bytes();
+                [a_hi, a_lo, b_hi, b_lo]
+            };
+            // DC may change only once the bytes before it are out.
+            for (command, params) in [(CASET, bounds(x)), (RASET, bounds(y))] {
+                wait_idle(self.spi);
+                let Ok(()) = self.dc.set_low();
+                write(self.spi, &[command]);
+                wait_idle(self.spi);
+                let Ok(()) = self.dc.set_high();
+                write(self.spi, &params);
+            }
+            wait_idle(self.spi);
+            let Ok(()) = self.dc.set_low();
+            write(self.spi, &[RAMWR]);
+            wait_idle(self.spi);
+            let Ok(()) = self.dc.set_high();
         }
-        let Ok(()) = dc.set_low();
-        write_blocking(spi, &[RAMWR]);
-        let Ok(()) = dc.set_high();
+
+        fn pixels(&mut self, pixels: &[WireRgb565]) {
+            for pixel in pixels {
+                write(self.spi, &pixel.bytes());
+            }
+        }
+    }
+
+    /// Traces band `k` of `frame` into `buf`. Without a frame (the camera or the moved
+    /// sphere refused) or if the band is refused, the band is dark red (not the black
+    /// background) and the reason is returned; the frame still goes out whole, so the
+    /// display's write pointer stays in step. Not inlined: one copy of the render loop
+    /// for every call site.
+    #[inline(never)]
+    fn trace(frame: Option<&Frame<'_>>, k: u32, buf: &mut [WireRgb565]) -> Option<&'static str> {
+        let rows = k * BAND_ROWS..(k + 1) * BAND_ROWS;
+        let why = match frame.map(|frame| frame.draw_band(rows, buf)) {
+            Some(Ok(())) => return None,
+            None => "motion or camera refused",
+            Some(Err(BandError::Frame(_))) => "frame refused (FrameError)",
+            Some(Err(_)) => "band rows or buffer wrong",
+        };
+        buf.fill(WireRgb565::REFUSED);
+        Some(why)
     }
 
     /// Cycles as milliseconds with one decimal, for the label.
     fn tenths_of_ms(cycles: u32, sysclk_hz: u32) -> (u64, u64) {
         let tenths = u64::from(cycles) * 10_000 / u64::from(sysclk_hz);
         (tenths / 10, tenths % 10)
+    }
+
+    /// The top line: why a band of the last frame could not be traced, or the last
+    /// frame's rate, time, wait (cycles) and share of the panel sent.
+    fn label(refused: Option<&str>, shown: Option<(u32, u32, u32)>, sysclk_hz: u32) -> heapless::String<40> {
+        let mut label = heapless::String::<40>::new();
+        let written = match (refused, shown) {
+            (Some(why), _) => write!(label, "error: {why}"),
+            (None, Some((frame, wait, sent))) => {
+                let (frame_ms, frame_tenth) = tenths_of_ms(frame, sysclk_hz);
+                let (wait_ms, wait_tenth) = tenths_of_ms(wait, sysclk_hz);
+                let fps_tenths = u64::from(sysclk_hz) * 10 / u64::from(frame.max(1));
+                let share = u64::from(sent) * 100 / u64::from(WIDTH * HEIGHT);
+                write!(
+                    label,
+                    "{}.{} fps {frame_ms}.{frame_tenth} ms wait {wait_ms}.{wait_tenth} {share}%",
+                    fps_tenths / 10,
+                    fps_tenths % 10
+                )
+            }
+            (None, None) => Ok(()),
+        };
+        // 40 characters fill the line; a longer label is cut.
+        if written.is_err() {
+            label.truncate(39);
+        }
+        label
     }
 
     #[entry]
@@ -192,98 +270,105 @@ mod fw {
             panic!("band buffers taken twice");
         };
 
-        let size = Size::new(WIDTH, HEIGHT);
-        let lab = scenes::LAB_CAMERA;
-        let offset = lab.eye - lab.look_at;
-        // Orbit the lab camera's eye around the look-at point (about +y).
-        let camera_at = |angle: f32| {
-            let (s, c) = (libm::sinf(angle), libm::cosf(angle));
-            let eye =
-                lab.look_at + Vec3::new(c * offset.x + s * offset.z, offset.y, c * offset.z - s * offset.x);
-            Camera::new(eye, lab.look_at, lab.up, lab.fov_y, size).ok()
-        };
-
-        let mut angle = 0.0f32;
-        let mut camera = camera_at(angle);
-        trace_band(camera.as_ref(), 0, &mut front[..]);
-        // The cycle count at the last frame's step 1, and the cycles spent waiting for
+        let base_camera = scenes::BOUNCE_CAMERA.with_size(Size::new(WIDTH, HEIGHT));
+        let animation = &scenes::BOUNCE_ANIMATION;
+        let mut scene = scenes::BOUNCE.clone();
+        // What the display shows: the next frame traces and sends only what changed.
+        let mut display_has = Incremental::<3, 1, 1, 0>::new();
+        let label_area = Rectangle::new(Point::zero(), Size::new(WIDTH, frame::LABEL_ROWS));
+        // The cycle count at the last frame's start, and the cycles spent waiting for
         // the wire since then.
         let mut last_start: Option<u32> = None;
         let mut waited = 0u32;
-        // The last complete frame's time and waiting time, for the label.
-        let mut shown: Option<(u32, u32)> = None;
+        // The last frame's pixels sent, and why a band of it could not be traced.
+        let mut sent = 0u32;
+        let mut refused: Option<&'static str> = None;
+        let mut n = 0u32;
         loop {
             let start = DWT::cycle_count();
-            if let Some(last) = last_start {
-                shown = Some((start.wrapping_sub(last), waited));
-            }
+            let shown = last_start.map(|last| (start.wrapping_sub(last), waited, sent));
             last_start = Some(start);
-
-            // Step 1: chip select, address window, RAMWR.
+            waited = 0;
+            let label = label(refused.take(), shown, sysclk_hz);
+            let mut params = base_camera;
+            let camera = animation
+                .apply_frame(&scenes::BOUNCE, &base_camera, n, &mut scene, &mut params)
+                .ok()
+                .and_then(|()| params.build().ok());
+            let frame = camera.as_ref().map(|camera| Render::new(&scene, camera));
+            let changes = frame.as_ref().map(|frame| display_has.update(frame));
             cs.set_low();
-            start_frame(&spi1, &mut dc);
-            waited = DWT::cycle_count().wrapping_sub(start);
-
-            // Step 2: band 0 on the wire.
-            let mut transfer: BandTransfer =
-                Transfer::init_memory_to_peripheral(stream, spi1, front, None, dma_config);
-            transfer.start(|_| {});
-
-            // Step 3: trace band k while band k − 1 is on the wire.
-            for k in 1..BANDS {
-                trace_band(camera.as_ref(), k, &mut back[..]);
-                let wait_start = DWT::cycle_count();
-                transfer.wait();
-                waited = waited.wrapping_add(DWT::cycle_count().wrapping_sub(wait_start));
-                // Not double-buffered: this restarts the stream on `back` and never
-                // fails; an error would hand `back` back unsent.
-                back = match transfer.next_transfer(back) {
-                    Ok((sent, _)) => sent,
-                    Err(
-                        DMAError::NotReady(unsent)
-                        | DMAError::SmallBuffer(unsent)
-                        | DMAError::Overrun(unsent),
-                    ) => unsent,
-                };
-            }
-
-            // Step 4: the next frame's band 0, with the last complete frame's figures
-            // over it, while this frame's last band is on the wire.
-            angle = (angle + STEP) % (2.0 * core::f32::consts::PI);
-            camera = camera_at(angle);
-            trace_band(camera.as_ref(), 0, &mut back[..]);
-            // The top line: why a band of the last frame could not be traced, or the
-            // last complete frame's rate, time and wait.
-            let mut label = heapless::String::<40>::new();
-            let written = match (take_refused(), shown) {
-                (Some(why), _) => write!(label, "error: {why}"),
-                (None, Some((frame, wait))) => {
-                    let (frame_ms, frame_tenth) = tenths_of_ms(frame, sysclk_hz);
-                    let (wait_ms, wait_tenth) = tenths_of_ms(wait, sysclk_hz);
-                    let fps_tenths = u64::from(sysclk_hz) * 10 / u64::from(frame.max(1));
-                    write!(
-                        label,
-                        "{}.{} fps {frame_ms}.{frame_tenth} ms wait {wait_ms}.{wait_tenth}",
-                        fps_tenths / 10,
-                        fps_tenths % 10
-                    )
+            match (&changes, &frame) {
+                (Some(changes), Some(frame)) if !changes.is_full() && changes.refused().is_none() => {
+                    // Only the changed runs, by the core.
+                    let mut wire = Core {
+                        spi: &spi1,
+                        dc: &mut dc,
+                    };
+                    let draw = |band: &mut [WireRgb565]| draw_label(band, &label);
+                    sent = match frame::send_runs(changes, frame, BAND_ROWS, &mut front[..], draw, &mut wire)
+                    {
+                        Ok(sent) => sent,
+                        Err(_) => {
+                            refused = Some("band rows or buffer wrong");
+                            0
+                        }
+                    };
+                    wait_idle(&spi1);
                 }
-                (None, None) => Ok(()),
-            };
-            // 40 characters fill the line; a longer label is cut.
-            if written.is_err() {
-                label.truncate(39);
+                _ => {
+                    // Step 1: band 0 with the label, chip select, address window, RAMWR.
+                    refused = refused.or(trace(frame.as_ref(), 0, &mut front[..]));
+                    draw_label(&mut front[..], &label);
+                    let mut wire = Core {
+                        spi: &spi1,
+                        dc: &mut dc,
+                    };
+                    wire.window(0..WIDTH, 0..HEIGHT);
+                    wait_idle(&spi1);
+
+                    // Step 2: band 0 on the wire.
+                    let mut transfer: BandTransfer =
+                        Transfer::init_memory_to_peripheral(stream, spi1, front, None, dma_config);
+                    transfer.start(|_| {});
+
+                    // Step 3: trace band k while band k − 1 is on the wire.
+                    for k in 1..BANDS {
+                        refused = refused.or(trace(frame.as_ref(), k, &mut back[..]));
+                        let wait_start = DWT::cycle_count();
+                        transfer.wait();
+                        waited = waited.wrapping_add(DWT::cycle_count().wrapping_sub(wait_start));
+                        // Not double-buffered: this restarts the stream on `back` and
+                        // never fails; an error would hand `back` back unsent.
+                        back = match transfer.next_transfer(back) {
+                            Ok((sent, _)) => sent,
+                            Err(
+                                DMAError::NotReady(unsent)
+                                | DMAError::SmallBuffer(unsent)
+                                | DMAError::Overrun(unsent),
+                            ) => unsent,
+                        };
+                    }
+
+                    // Step 4: the last band off the wire.
+                    let wait_start = DWT::cycle_count();
+                    transfer.wait();
+                    (stream, spi1, front, _) = transfer.release();
+                    wait_idle(&spi1);
+                    waited = waited.wrapping_add(DWT::cycle_count().wrapping_sub(wait_start));
+                    sent = WIDTH * HEIGHT;
+                }
             }
-            draw_label(&mut back[..], &label);
-            let wait_start = DWT::cycle_count();
-            transfer.wait();
-            let sent;
-            (stream, spi1, sent, _) = transfer.release();
-            wait_idle(&spi1);
             cs.set_high();
-            waited = waited.wrapping_add(DWT::cycle_count().wrapping_sub(wait_start));
-            front = back;
-            back = sent;
+            // The label is over the picture; a band traced dark red leaves a picture
+            // that is no frame: the next one is drawn whole.
+            display_has.invalidate_area(label_area);
+            if refused.is_some() {
+                display_has.invalidate();
+            }
+            // The motion repeats after `frames()` frames exactly: counting within one
+            // loop keeps every frame's time as exact as the first loop's.
+            n = (n + 1) % animation.frames();
         }
     }
 }

@@ -3,19 +3,20 @@
 //! and, traced by `Render::draw_band` and put on the wire in band order, they are the
 //! whole render's pixels bit for bit — at the firmware's 240×240 in its bands, and
 //! at a smaller size with several band heights, on every standard scene with every
-//! method. And the firmware's camera orbit (`boards/rp2040/src/orbit.rs`): the integer
-//! kernel's rule takes every frame of it, so `Render::draw_band_integer`, which the
-//! firmware traces with, refuses none.
+//! method. And the firmware's frames over its motion (`scenes/circling.toml`, compiled in
+//! by its `scenes.rs`): the integer kernel's rule takes every frame, so
+//! `Render::draw_band_integer` and `draw_integer`, which the firmware traces with,
+//! refuse none; the first frame goes out whole from both cores' bands, every later one
+//! as changed runs (`boards/rp2040/src/runs.rs`), and the display ends with the whole
+//! render of the last.
 
 use crate::common;
 
 #[path = "../../../boards/rp2040/src/split.rs"]
 mod split;
 
-use embedded_raytracer_lab::scenes;
-
-#[path = "../../../boards/rp2040/src/orbit.rs"]
-pub(crate) mod orbit;
+#[path = "../../../boards/rp2040/src/runs.rs"]
+mod runs;
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
@@ -168,72 +169,131 @@ fn every_method_every_scene_every_band_height_equals_the_whole_render() {
     }
 }
 
-/// The firmware draws every frame with `draw_band_integer`, which draws nothing where the
-/// integer kernel's rule refuses the frame: on the orbit it must take every frame — the
-/// first 20,000 angles the firmware steps through (from 0 by `orbit::next_angle`; the
-/// whole cycle, until the angle is 0 again, is the `--ignored` test below) and the whole
-/// circle every 0.01° — and, traced band by band in the firmware's bands, some of those
-/// frames are the whole integer render's pixels.
-#[test]
-fn the_integer_kernel_takes_every_frame_of_the_firmware_orbit() {
-    let taken = integer_takes;
-    let mut angle = 0.0f32;
-    for frame in 0..20_000 {
-        assert!(taken(angle), "frame {frame} at {angle} rad: refused");
-        angle = orbit::next_angle(angle);
+/// The ST7789's memory as the firmware writes it: an address window, and a write
+/// pointer that walks it row by row.
+struct Controller {
+    px: Vec<Option<Rgb565>>,
+    window: (std::ops::Range<u32>, std::ops::Range<u32>),
+    at: u32,
+}
+
+impl runs::Wire<Rgb565> for Controller {
+    fn window(&mut self, x: std::ops::Range<u32>, y: std::ops::Range<u32>) {
+        self.window = (x, y);
+        self.at = 0;
     }
-    for k in 0..36_000 {
-        let angle = (k as f32 / 100.0).to_radians();
-        assert!(taken(angle), "{} degrees: refused", k as f32 / 100.0);
-    }
-    // Frames 0, 18, 37 and 55 (0°, 90°, 185°, 275°): the firmware's bands, traced with
-    // draw_band_integer, are the whole integer render.
-    let mut angle = 0.0f32;
-    for frame in 0..56 {
-        if [0, 18, 37, 55].contains(&frame) {
-            let camera = orbit::camera_at(angle, FIRMWARE_SIZE).unwrap();
-            let want = whole(&scenes::LAB, &camera, Method::INTEGER);
-            let render = Render::<_, Rgb888>::new(&scenes::LAB, &camera);
-            let bands = split::band_count(FIRMWARE_SIZE.height, split::BAND_ROWS);
-            let mut got = Vec::new();
-            for k in 0..bands {
-                let rows = split::band_rows(k, FIRMWARE_SIZE.height, split::BAND_ROWS);
-                let mut buf = vec![Rgb888::new(1, 2, 3); (FIRMWARE_SIZE.width * rows.len() as u32) as usize];
-                render.draw_band_integer(rows, &mut buf).unwrap();
-                got.extend(buf);
-            }
-            assert!(
-                got == want,
-                "frame {frame}: integer bands differ from the whole render"
+
+    fn pixels(&mut self, pixels: &[Rgb565]) {
+        let (x, y) = self.window.clone();
+        for &c in pixels {
+            let (i, j) = (
+                x.start + self.at % x.len() as u32,
+                y.start + self.at / x.len() as u32,
             );
+            assert!(y.contains(&j), "a pixel past the window");
+            self.px[(j * FIRMWARE_SIZE.width + i) as usize] = Some(c);
+            self.at += 1;
         }
-        angle = orbit::next_angle(angle);
     }
 }
 
-/// Whether the integer kernel takes the firmware's frame at `angle`.
-fn integer_takes(angle: f32) -> bool {
-    let camera = orbit::camera_at(angle, FIRMWARE_SIZE).unwrap_or_else(|| panic!("no camera at {angle}"));
-    let render = Render::<_, Rgb565>::new(&scenes::LAB, &camera).with_method(Method::INTEGER);
-    render.arithmetic() == Arithmetic::Integer
-}
-
-/// Every frame the firmware can draw: stepped by `orbit::next_angle` from 0, the `f32`
-/// angle comes back to exactly 0 (after some 13 million frames) and the orbit repeats;
-/// the rule takes every frame of that cycle. Slow in debug: run in release by `.ci/run`
-/// (`cargo test --release --test rp2040_split -- --ignored`).
+/// The firmware's frames over a loop of its motion (`scenes::CIRCLING_ANIMATION`, the
+/// firmware's own `scenes.rs`) and back to its first frame, as it draws them: the
+/// integer kernel's rule takes every frame (`draw_band_integer` and `draw_integer`
+/// draw nothing where it does not); core 0's `update` plans the first frame whole,
+/// whose bands, traced in the firmware's bands by both cores, are the whole integer
+/// render; every later frame is changed runs, which `runs::send_runs` (the firmware's
+/// own file) traces and sends window by window, a label over band 0 each frame; and
+/// the display then holds the whole integer render of the last frame.
 #[test]
-#[ignore = "13 million per-frame rules: release only"]
-fn the_integer_kernel_takes_the_whole_orbit_cycle() {
-    let (mut angle, mut frames) = (0.0f32, 0u64);
-    loop {
-        assert!(integer_takes(angle), "frame {frames} at {angle} rad: refused");
-        angle = orbit::next_angle(angle);
-        frames += 1;
-        if angle == 0.0 {
-            break;
+fn the_firmware_draws_every_frame_of_its_motion() {
+    let animation = &crate::scenes::CIRCLING_ANIMATION;
+    let base = crate::scenes::CIRCLING_CAMERA.with_size(FIRMWARE_SIZE);
+    let mut scene = crate::scenes::CIRCLING.clone();
+    let mut display_has = embedded_raytracer::Incremental::<3>::new();
+    let mut lcd = Controller {
+        px: vec![None; (FIRMWARE_SIZE.width * FIRMWARE_SIZE.height) as usize],
+        window: (0..0, 0..0),
+        at: 0,
+    };
+    let label_area =
+        embedded_graphics::primitives::Rectangle::new(Point::zero(), Size::new(FIRMWARE_SIZE.width, 12));
+    let mut buf = vec![Rgb565::BLACK; (FIRMWARE_SIZE.width * split::BAND_ROWS) as usize];
+    let frames = animation.frames();
+    let mut camera = None;
+    for (i, k) in (0..=frames).map(|k| k % frames).enumerate() {
+        let mut params = base;
+        animation
+            .apply_frame(&crate::scenes::CIRCLING, &base, k, &mut scene, &mut params)
+            .unwrap();
+        let cam = params.build().unwrap();
+        let render = Render::<_, Rgb565>::new(&scene, &cam).with_method(Method::INTEGER);
+        assert_eq!(render.arithmetic(), Arithmetic::Integer, "frame {k}: refused");
+        let changes = display_has.update(&render);
+        assert!(changes.refused().is_none(), "frame {k}");
+        assert_eq!(changes.is_full(), i == 0, "frame {i}");
+        let last = i == frames as usize;
+        let label = |band: &mut [Rgb565]| {
+            if !last {
+                band[(3 * FIRMWARE_SIZE.width + 2) as usize..(3 * FIRMWARE_SIZE.width + 40) as usize]
+                    .fill(Rgb565::WHITE);
+            }
+        };
+        if changes.is_full() {
+            let got = two_core_frame(&render, FIRMWARE_SIZE, split::BAND_ROWS);
+            let want = whole(&scene, &cam, Method::INTEGER);
+            assert!(
+                got == want.into_iter().map(Rgb565::from).collect::<Vec<_>>(),
+                "frame {k}: the two cores' bands differ from the whole render"
+            );
+            lcd.window = (0..FIRMWARE_SIZE.width, 0..FIRMWARE_SIZE.height);
+            lcd.at = 0;
+            let mut px = got;
+            label(&mut px[..]);
+            runs::Wire::pixels(&mut lcd, &px);
+        } else {
+            runs::send_runs(&changes, &render, split::BAND_ROWS, &mut buf, label, &mut lcd).unwrap();
         }
-        assert!(frames < 100_000_000, "the orbit did not come back to 0");
+        display_has.invalidate_area(label_area);
+        camera = Some(cam);
     }
-    println!("the orbit repeats after {frames} frames, every one taken by the integer kernel");
+    let want: Vec<Rgb565> = whole(&scene, &camera.unwrap(), Method::INTEGER)
+        .into_iter()
+        .map(Rgb565::from)
+        .collect();
+    assert!(
+        lcd.px
+            .into_iter()
+            .map(|p| p.expect("every pixel written"))
+            .collect::<Vec<_>>()
+            == want,
+        "the last frame differs from the whole render"
+    );
+}
+
+/// A frame in which nothing moved but the label was drawn over the picture
+/// (`invalidate_area`): core 0 sends the label's runs alone, and nothing else.
+#[test]
+fn a_frame_without_motion_sends_only_the_label() {
+    let camera = crate::scenes::CIRCLING_CAMERA
+        .with_size(FIRMWARE_SIZE)
+        .build()
+        .unwrap();
+    let mut display_has = embedded_raytracer::Incremental::<3>::new();
+    let render = Render::<_, Rgb565>::new(&crate::scenes::CIRCLING, &camera).with_method(Method::INTEGER);
+    assert!(display_has.update(&render).is_full());
+    let label =
+        embedded_graphics::primitives::Rectangle::new(Point::zero(), Size::new(FIRMWARE_SIZE.width, 12));
+    display_has.invalidate_area(label);
+    let changes = display_has.update(&render);
+    assert!(!changes.is_full() && !changes.is_empty());
+    for j in 0..FIRMWARE_SIZE.height {
+        let runs: Vec<_> = changes.runs(j).collect();
+        let want = if j < 12 {
+            vec![(0, FIRMWARE_SIZE.width)]
+        } else {
+            vec![]
+        };
+        assert_eq!(runs, want, "row {j}");
+    }
 }

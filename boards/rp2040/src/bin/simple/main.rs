@@ -1,8 +1,10 @@
-//! The simple Pico example: one core, the integer kernel drawing the lab scene straight
-//! into a 240×240 ST7789 through `mipidsi`, the camera orbiting 5° a frame
-//! (`../../orbit.rs`, the same orbit as the two-core example). Where the integer kernel's
-//! per-frame rule refuses a frame, the `f32` kernel draws it; the top line says which
-//! kernel drew the last frame and its frame rate, or what went wrong.
+//! The simple Pico example: one core, the integer kernel drawing `scenes/circling.toml`
+//! (three spheres circling, the library's motion; `../../scenes.rs`, the same as the
+//! two-core example's) straight into a 240×240 ST7789 through `mipidsi`, frame after
+//! frame through `Incremental`: only what the moving spheres can have changed is traced
+//! and sent. Where the integer kernel's per-frame rule refuses a frame,
+//! the `f32` kernel draws it; the top line says which kernel drew the last frame, its
+//! frame rate and the share of the panel sent, or what went wrong.
 //!
 //! ```sh
 //! cargo build --release --bin simple
@@ -15,8 +17,6 @@
 #![no_main]
 
 mod frame;
-#[path = "../../orbit.rs"]
-mod orbit;
 #[path = "../../scenes.rs"]
 mod scenes;
 
@@ -86,17 +86,27 @@ fn main() -> ! {
     };
 
     let size = display.bounding_box().size;
-    let mut angle = 0.0f32;
+    let film = frame::Film {
+        scene: &scenes::CIRCLING,
+        camera: scenes::CIRCLING_CAMERA.with_size(size),
+        animation: &scenes::CIRCLING_ANIMATION,
+    };
+    let mut scene = scenes::CIRCLING.clone();
+    let mut shown = embedded_raytracer::Incremental::new();
     let mut display_errors = 0u32;
+    let mut k = 0u32;
     loop {
         let start = timer.get_counter().ticks();
-        let drawn = frame::frame(&mut display, &scenes::LAB, orbit::camera_at(angle, size).as_ref());
+        let drawn = frame::frame(&mut display, &mut shown, &film, k, &mut scene);
         let us = timer.get_counter().ticks().wrapping_sub(start);
         // Drawn over the picture; if the display cannot take it, nothing else can
         // show it: counted, and shown once it can.
-        if frame::show(&mut display, &frame::status(&drawn, us, display_errors)).is_err() {
+        let line = frame::status(&drawn, us, size.width * size.height, display_errors);
+        if frame::show(&mut display, &mut shown, &line).is_err() {
             display_errors = display_errors.saturating_add(1);
         }
-        angle = orbit::next_angle(angle);
+        // The motion repeats after `frames()` frames exactly: counting within one
+        // loop keeps every frame's time as exact as the first loop's.
+        k = (k + 1) % film.animation.frames();
     }
 }

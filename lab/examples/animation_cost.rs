@@ -33,6 +33,7 @@ use std::process::ExitCode;
 
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
 use embedded_raytracer::motion::{Animation, Circle, Motion};
 use embedded_raytracer::{CameraParams, FrameStats, Incremental, Method, Render, Scene, Vec3};
 use embedded_raytracer_lab::scenes::{
@@ -75,6 +76,10 @@ struct Frame {
     changed: u32,
     inc_ns: f64,
     full_ns: f64,
+    /// The strips this frame traced, drawn by plain clipped renders (`Render::draw`
+    /// into the target clipped to each): the traced pixels' cost with each strip's
+    /// frame set-up, without the plan and the runs.
+    clip_ns: f64,
 }
 
 struct Measured {
@@ -141,6 +146,8 @@ fn measure<const N: usize, const L: usize, const P: usize, const D: usize, const
     let count = animation.frames() as usize + 1;
     let mut inc_times = vec![Vec::with_capacity(REPS); count];
     let mut full_times = vec![Vec::with_capacity(REPS); count];
+    let mut clip_times = vec![Vec::with_capacity(REPS); count];
+    let mut clip_buf = vec![Rgb565::BLACK; PIXELS];
     let mut stats: Vec<FrameStats> = Vec::with_capacity(count);
     let mut changed: Vec<u32> = Vec::with_capacity(count);
 
@@ -179,6 +186,27 @@ fn measure<const N: usize, const L: usize, const P: usize, const D: usize, const
                 black_box(&target.buf);
                 t
             };
+            // The strips this frame will trace (a copy of what the display shows plans
+            // them), each drawn by a plain clipped render.
+            let strips: Vec<Rectangle> = {
+                let render = Render::<N, Rgb565, L, P, D>::new(&scene, &camera).with_method(method);
+                shown.clone().update(&render).rectangles().collect()
+            };
+            let tc = {
+                let mut target = SliceTarget {
+                    buf: &mut clip_buf,
+                    size: SIZE,
+                };
+                let start = now();
+                let render = Render::new(&scene, &camera).with_method(method);
+                for strip in &strips {
+                    let Ok(()) = render.draw(&mut target.clipped(strip));
+                }
+                let t = ns(start);
+                black_box(&clip_buf);
+                t
+            };
+            clip_times[frame].push(tc);
             // Which goes first alternates, so neither always finds the caches warm.
             let (s, ti, tf) = if (rep + frame) % 2 == 0 {
                 let (s, ti) = timed_inc(&mut shown);
@@ -256,6 +284,7 @@ fn measure<const N: usize, const L: usize, const P: usize, const D: usize, const
             changed: changed[f],
             inc_ns: median(&mut inc_times[f]),
             full_ns: median(&mut full_times[f]),
+            clip_ns: median(&mut clip_times[f]),
         })
         .collect();
     Ok(Measured {
@@ -370,6 +399,15 @@ fn section(all: &[Measured]) -> Result<String, std::fmt::Error> {
             r[0],
             r[1],
             r[2]
+        )?;
+        let c = spread(rest.iter().map(|f| f.inc_ns / f.clip_ns).collect());
+        writeln!(
+            md,
+            "| time, incremental ÷ its strips drawn clipped | {:.3} | {:.3} | {:.3} | {:.3} |",
+            first.inc_ns / first.clip_ns,
+            c[0],
+            c[1],
+            c[2]
         )?;
         let i = spread(rest.iter().map(|f| f.inc_ns).collect());
         writeln!(

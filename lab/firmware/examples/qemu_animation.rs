@@ -99,7 +99,11 @@ mod fw {
         }
         /// One window: its commands, then its pixels stored in row order (every area
         /// the kernel sends is one row within the display).
-        fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(&mut self, area: &Rectangle, colors: I) -> Result<(), Infallible> {
+        fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
+            &mut self,
+            area: &Rectangle,
+            colors: I,
+        ) -> Result<(), Infallible> {
             let start = self.start(area.top_left);
             let n = (area.size.width * area.size.height) as usize;
             self.bytes += 11 + 2 * n as u64;
@@ -151,18 +155,28 @@ mod fw {
     ) -> bool {
         // A constant in each instantiation, and the render is made inside each timed
         // closure: the measured code dispatches on a known method, as a firmware's does.
-        let method = if INTEGER { Method::INTEGER } else { Method::TARGET_DEFAULT };
+        let method = if INTEGER {
+            Method::INTEGER
+        } else {
+            Method::TARGET_DEFAULT
+        };
         let mut scene = base.clone();
         let mut at = params;
         let mut shown: Incremental<N, L, PL, D> = Incremental::new();
         let mut row = [Rgb565::BLACK; W as usize];
         let mut ok = true;
         for frame in 0..=animation.frames() {
-            if animation.apply_frame(base, &params, frame, &mut scene, &mut at).is_err() {
+            if animation
+                .apply_frame(base, &params, frame, &mut scene, &mut at)
+                .is_err()
+            {
                 return false;
             }
             let Ok(camera) = at.build() else { return false };
-            let mut display = Display { px: &mut *fb, bytes: 0 };
+            let mut display = Display {
+                px: &mut *fb,
+                bytes: 0,
+            };
             let mut stats = None;
             let instr = run.timed(|| {
                 let render = Render::new(&scene, &camera).with_method(method);
@@ -173,7 +187,10 @@ mod fw {
             ok &= stats.refused.is_none();
             // The same frame drawn whole, each row stored as the display stores it: the
             // baseline.
-            let mut whole = Display { px: &mut row[..], bytes: 0 };
+            let mut whole = Display {
+                px: &mut row[..],
+                bytes: 0,
+            };
             let full_instr = run.timed(|| {
                 let _ = Render::new(&scene, &camera).with_method(method).draw(&mut whole);
             });
@@ -195,14 +212,20 @@ mod fw {
         shown.invalidate_area(Rectangle::new(Point::new(0, 0), Size::new(1, 1)));
         let Ok(camera) = at.build() else { return false };
         let render = Render::new(&scene, &camera).with_method(method);
-        let mut display = Display { px: &mut *fb, bytes: 0 };
+        let mut display = Display {
+            px: &mut *fb,
+            bytes: 0,
+        };
         let setup = run.timed(|| {
             let _ = shown.draw(&Render::new(&scene, &camera).with_method(method), &mut display);
         });
         run.platform.print(format_args!("setup {} instr {}", name, setup));
         // The display against the last frame's full render.
         let mut shown_hash = Hash565(PixelHash::new(Size::new(W, H)));
-        let _ = shown_hash.fill_contiguous(&Rectangle::new(Point::zero(), Size::new(W, H)), fb.iter().copied());
+        let _ = shown_hash.fill_contiguous(
+            &Rectangle::new(Point::zero(), Size::new(W, H)),
+            fb.iter().copied(),
+        );
         let mut full_hash = Hash565(PixelHash::new(Size::new(W, H)));
         let _ = render.draw(&mut full_hash);
         let equal = shown_hash.0.hash() == full_hash.0.hash();
@@ -222,7 +245,8 @@ mod fw {
             abort("core peripherals already taken");
         };
         let mut run = Run::start(platform);
-        let Some(fb) = cortex_m::singleton!(: [Rgb565; (W * H) as usize] = [Rgb565::BLACK; (W * H) as usize]) else {
+        let Some(fb) = cortex_m::singleton!(: [Rgb565; (W * H) as usize] = [Rgb565::BLACK; (W * H) as usize])
+        else {
             abort("frame buffer already taken");
         };
         let bounce = sequence::<_, 3, 1, 1, 0, 1, false>(

@@ -14,7 +14,7 @@
 //! 1. **Frame-wide state** equal in both frames, else the whole frame is drawn: the
 //!    camera, the method, sampling, options and offset, the target's bounding box, the
 //!    background and settings, every light and plane, the number of spheres, the
-//!    frame's [`Scale`] and whether it left far spheres out, the features frame's ties
+//!    frame's scale (its power of two) and whether it left far spheres out, the features frame's ties
 //!    (a lamp on a surface, coincident objects); for the integer kernel, its
 //!    per-frame rule's decision and quantisation (pixel unit, focal length, shade
 //!    shift, length unit) — its spheres' regions are then the cuts its rows are culled
@@ -28,8 +28,8 @@
 //!    anything); a mirror plane draws the whole frame.
 //! 3. **Sampling** widens each silhouette by its footprint: `Grid(n)`'s sub-pixel rays
 //!    lie within half a pixel of the centre (the silhouette's reach over the pixel's
-//!    rows, [`band_reach`](crate::camera::span::Silhouette::band_reach), and half a
-//!    column), and `Adaptive(n)` decides a pixel from its neighbours' samples too (two
+//!    rows, as anti-aliasing culls its sub-pixel rays, and half a
+//!    column), and `Adaptive(n)` decides a pixel from its neighbours' samples too (three
 //!    pixels more each way).
 //! 4. **What the display lost** ([`Incremental::invalidate`],
 //!    [`Incremental::invalidate_area`]).
@@ -71,7 +71,7 @@ use crate::trace::options::{Options, SecondaryOrigin};
 use crate::trace::scanline::{ColorRuns, PixelRow, RowSink};
 
 /// At most this many regions (silhouettes and rectangles) a frame re-traces; more draw
-/// the whole frame. It bounds the plan's stack: about 40 bytes a region.
+/// the whole frame. With the strips it bounds the plan's size ([`Changes`]).
 pub const MAX_REGIONS: usize = 12;
 
 /// Two runs of a row at most this many pixels apart are sent as one. A display
@@ -82,11 +82,12 @@ pub const MAX_REGIONS: usize = 12;
 pub const MERGE_GAP: u32 = 5;
 
 /// A traced rectangle is cut into strips of rows that follow the changed runs; a strip
-/// grows while it traces at most this many pixels outside the runs: about what a
-/// strip's own frame set-up costs, in pixels of the frame's kind, as measured on the
-/// Cortex-M4F (`lab/firmware/examples/qemu_animation.rs`'s `setup` lines against the
-/// frames' instructions per traced pixel): `[f32 Lab #1, f32 with features, integer
-/// kernel]`. Tuning constants: any values draw the same pixels.
+/// grows while it traces at most this many pixels outside the runs: roughly what a
+/// strip's own frame set-up costs, in pixels of the frame's kind, `[f32 Lab #1, f32 with
+/// features, integer kernel]` (on the Cortex-M4F a lit strip's set-up is about 140
+/// traced pixels' instructions, `lab/firmware/examples/qemu_animation.rs`'s `setup`
+/// line; the other two are estimates). Tuning constants: any values draw the same
+/// pixels.
 pub const STRIP_SETUP: [u32; 3] = [1024, 128, 2048];
 
 /// At most this many strips a frame; more trace each rectangle whole.
@@ -116,8 +117,10 @@ pub struct FrameStats {
 
 /// What the display shows, remembered for the next frame: the scene, camera and render
 /// settings of the last frame drawn. Its size is the scene's
-/// (`size_of::<Scene<N, L, P, D>>()`: 44 bytes a sphere of capacity `N`, 20 a light, 60
-/// a plane) and about 100 bytes more; it holds no pixel.
+/// (`size_of::<Scene<N, L, P, D>>()`: 32 bytes a sphere of capacity `N`, 24 a light, 56
+/// a plane, and 40) and 128 bytes more; it holds no pixel. While it draws, its plan of
+/// the frame ([`Changes`], 1,704 bytes on a 32-bit target) is on the stack beside the
+/// render's own.
 ///
 /// ```
 /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::{Rgb565, Rgb888}, prelude::*};

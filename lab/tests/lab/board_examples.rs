@@ -41,8 +41,8 @@ mod ssd1306_scenes;
 
 #[path = "../../../boards/stm32f407/src/frame.rs"]
 mod stm32f407;
-#[path = "../../../boards/stm32f407/src/scenes.rs"]
-mod stm32f407_scenes;
+// One module per file: `board_scenes` loads this board's scenes (its `lab` scene).
+use crate::board_scenes::stm32f407 as stm32f407_scenes;
 
 /// The ST7789 panels.
 const PANEL: Size = Size::new(240, 240);

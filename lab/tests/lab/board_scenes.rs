@@ -7,10 +7,9 @@ use embedded_raytracer_lab::standard;
 
 #[path = "../../../examples/stm32f407_st7789/scenes.rs"]
 mod root_example;
-// Its `bounce` scene is checked by `board_examples`.
-#[allow(dead_code)]
+// Its `bounce` scene is checked by `board_examples`, which uses this module.
 #[path = "../../../boards/stm32f407/src/scenes.rs"]
-mod stm32f407;
+pub(crate) mod stm32f407;
 
 /// `scene` and `camera` against the file, bit for bit; the camera's size is the
 /// firmware's to replace.

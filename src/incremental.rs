@@ -20,9 +20,10 @@
 //!    shift, length unit) — its spheres' regions are then the cuts its rows are culled
 //!    with.
 //! 2. **Each sphere whose bits changed** (`-0.0` and `0.0` differ): its old and its new
-//!    silhouette. With lights and shadows, also the old and new shadow silhouettes it
-//!    casts on the first plane under each light (as the features frame culls its shadow
-//!    rays), and the silhouettes of the other spheres (on which its shadow can fall);
+//!    silhouette. With lights and shadows, also where the old and new shadows it casts on
+//!    the first plane under each light can be seen (the image of the disc of the plane
+//!    that holds each, enlarged as the features frame's culling of shadow rays is, and
+//!    for the stepping's direction error), and the silhouettes of the other spheres (on which its shadow can fall);
 //!    a second plane (whose shadow rays are not culled) draws the whole frame. With a
 //!    reflection depth, the silhouettes of every mirror sphere (a mirror can show
 //!    anything); a mirror plane draws the whole frame.

@@ -1600,17 +1600,37 @@ fn shadow_silhouette(
     camera: &Camera,
     step_err: f32,
 ) -> Silhouette {
+    match shadow_disc(light, g, floor) {
+        Some((centre, radius, _, _)) => {
+            let centre = Vec3::new(centre[0] as f32, centre[1] as f32, centre[2] as f32);
+            Silhouette::new(centre, radius as f32, camera, Margin::Quadratic, step_err)
+        }
+        None => Silhouette::ALL,
+    }
+}
+
+/// A disc of shadow: its centre (relative to the eye), radius, the plane's unit normal,
+/// and for a directional light the shadow's own cylinder (unit axis, radius) within it.
+type ShadowDisc = ([f64; 3], f64, [f64; 3], Option<([f64; 3], f64)>);
+
+/// The disc of `floor` that holds the shadow sphere `g` casts under `light`
+/// ([`shadow_silhouette`]), and for a directional light the cylinder it is the cut of
+/// (the disc's radius `r/|l·n|` is its semi-major axis), both radii enlarged by the
+/// same `2⁻⁸` of the lengths involved; `None` where the shadow is not bounded.
+fn shadow_disc(light: &FrameLight, g: &SphereGeom, floor: &FramePlane) -> Option<ShadowDisc> {
     let v64 = |v: Vec3| [f64::from(v.x), f64::from(v.y), f64::from(v.z)];
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let along = |a: [f64; 3], b: [f64; 3], k: f64| [a[0] + b[0] * k, a[1] + b[1] * k, a[2] + b[2] * k];
     let (c, q, mut n) = (v64(g.l), v64(floor.q), v64(floor.n));
     let r = libm::sqrt(f64::from(g.r2));
     let h_c = dot(along(c, q, -1.0), n);
-    let (centre, radius) = match *light {
+    let (centre, radius, axis) = match *light {
         FrameLight::Directional { l, .. } => {
             let l = v64(l);
             let ln = dot(l, n);
-            (along(c, l, -h_c / ln), r / ln.abs())
+            let len = libm::sqrt(dot(l, l));
+            let unit = [l[0] / len, l[1] / len, l[2] / len];
+            (along(c, l, -h_c / ln), r / ln.abs(), Some(unit))
         }
         FrameLight::Point { p, .. } => {
             let p = v64(p);
@@ -1623,13 +1643,13 @@ fn shadow_silhouette(
             let to_c = along(c, p, -1.0);
             let dist = libm::sqrt(dot(to_c, to_c));
             if !(dist > r && h_p > 0.0) {
-                return Silhouette::ALL;
+                return None;
             }
             let axis = [to_c[0] / dist, to_c[1] / dist, to_c[2] / dist];
             let alpha = libm::asin(r / dist);
             let gamma = libm::acos((-dot(axis, n)).clamp(-1.0, 1.0));
             if !(gamma + alpha < core::f64::consts::FRAC_PI_2 - 1e-6) {
-                return Silhouette::ALL;
+                return None;
             }
             // Along the tilt, a cut point lies h_P·tan θ from the light's foot with θ
             // within α of γ: at most h_P·(tan(γ + α) − tan γ) = h_P·sin α/(cos(γ + α)·cos γ)
@@ -1644,16 +1664,16 @@ fn shadow_silhouette(
             let reach = libm::sqrt(tilt * tilt + across * across);
             // C's height on the light's side: the axis meets the plane h_C/cos γ on.
             let h_c = dot(along(c, q, -1.0), n);
-            (along(c, axis, h_c / cos_g), h_p * reach)
+            (along(c, axis, h_c / cos_g), h_p * reach, None)
         }
     };
     let size = libm::sqrt(dot(centre, centre)) + libm::sqrt(dot(c, c)) + r;
-    let radius = radius + (radius + size) * (1.0 / 256.0);
+    let slack = (radius + size) * (1.0 / 256.0);
+    let radius = radius + slack;
     if !(radius.is_finite() && size.is_finite()) {
-        return Silhouette::ALL;
+        return None;
     }
-    let centre = Vec3::new(centre[0] as f32, centre[1] as f32, centre[2] as f32);
-    Silhouette::new(centre, radius as f32, camera, Margin::Quadratic, step_err)
+    Some((centre, radius, n, axis.map(|a| (a, r + slack))))
 }
 
 /// The frame-wide part of a features frame that a moved sphere can change besides its
@@ -1669,9 +1689,10 @@ pub(crate) fn same_ties<const N: usize, const L: usize, const P: usize, const D:
 }
 
 /// Where on the image the shadow that `sphere` casts on the scene's first plane under
-/// each of its lights can be seen, as the features frame culls its shadow rays with it
-/// ([`shadow_silhouette`]), in the frame's units (`scale`): one silhouette per usable
-/// light, passed to `f`. Nothing for a scene without a plane.
+/// each of its lights can be seen: the image of the disc of the plane that holds it
+/// ([`shadow_disc`], the disc the features frame culls its shadow rays with, inside the
+/// ball around it that [`shadow_silhouette`] images), in the frame's units (`scale`):
+/// one silhouette per usable light, passed to `f`. Nothing for a scene without a plane.
 pub(crate) fn shadow_regions<const N: usize, const L: usize, const P: usize, const D: usize>(
     scene: &Scene<N, L, P, D>,
     sphere: &Sphere,
@@ -1687,7 +1708,12 @@ pub(crate) fn shadow_regions<const N: usize, const L: usize, const P: usize, con
     let geom = SphereGeom::new(sphere.center, sphere.radius, eye, scale);
     for l in scene.lights() {
         if let Some(light) = FrameLight::new(l, eye, scale) {
-            f(shadow_silhouette(&light, &geom, &floor, camera, step_err));
+            f(match shadow_disc(&light, &geom, &floor) {
+                Some((centre, radius, n, axis)) => {
+                    Silhouette::on_plane(centre, n, radius, axis, camera, step_err)
+                }
+                None => Silhouette::ALL,
+            });
         }
     }
 }

@@ -422,3 +422,90 @@ fn bands_learn_the_changed_runs_and_trace_only_them() {
         );
     }
 }
+
+/// Shadows' edges at a resolution where they are sharp: a ball above a checkered floor
+/// under a low directional light, a point light or both, moved a little each frame
+/// (rising, sliding, sinking into the floor); every frame's display equals its full
+/// render, and frames trace much less than the whole image.
+#[test]
+fn moving_shadows_are_redrawn_exactly() {
+    let mut rng = Rng(0x51ad_0e55);
+    let size = Size::new(128, 96);
+    let (mut traced, mut frames) = (0u64, 0u64);
+    for case in 0..12 {
+        let eye = Vec3::new(rng.range(-3.0, 3.0), rng.range(0.6, 4.0), rng.range(5.0, 9.0));
+        let camera = CameraParams::new(eye, Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), 0.8, size)
+            .build()
+            .unwrap();
+        let mut scene: Scene<3, 2, 1, 0> = Scene::new(Rgb888::new(30, 40, 60));
+        let ball = Sphere::new(Vec3::new(0.0, 0.6, 0.0), 0.5, Rgb888::new(220, 60, 50))
+            .with_material(Material::new(0.5, 32.0, 0.0));
+        scene.push(ball).unwrap();
+        scene
+            .push(Sphere::new(
+                Vec3::new(-1.6, 0.4, -0.8),
+                0.4,
+                Rgb888::new(60, 200, 90),
+            ))
+            .unwrap();
+        scene
+            .push(Sphere::new(
+                Vec3::new(1.5, 0.3, 0.6),
+                0.3,
+                Rgb888::new(70, 110, 240),
+            ))
+            .unwrap();
+        scene
+            .push_plane(
+                Plane::new(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), Rgb888::new(220, 220, 210))
+                    .with_checker(Rgb888::new(60, 60, 70), 0.5),
+            )
+            .unwrap();
+        if case % 3 != 1 {
+            let low = rng.range(-1.2, -0.25);
+            let dir = Vec3::new(rng.range(-1.0, 1.0), low, rng.range(-1.0, 1.0));
+            scene.push_light(Light::directional(dir, 0.8)).unwrap();
+        }
+        if case % 3 != 0 {
+            let at = Vec3::new(rng.range(-3.0, 3.0), rng.range(1.5, 4.0), rng.range(-3.0, 3.0));
+            scene.push_light(Light::point(at, 0.7)).unwrap();
+        }
+        let method = if case % 4 == 3 {
+            Method::ALL[case * 5 % Method::ALL.len()]
+        } else {
+            Method::F32
+        };
+        let mut display = Buffer::new(size, Rgb565::BLACK);
+        let mut shown = Incremental::new();
+        let step = Vec3::new(
+            rng.range(-0.04, 0.04),
+            rng.range(-0.05, 0.05),
+            rng.range(-0.04, 0.04),
+        );
+        for f in 0..8 {
+            let mut b = ball;
+            b.center = ball.center + step * f as f32;
+            scene.set_sphere(0, b).unwrap();
+            let render = Render::new(&scene, &camera).with_method(method);
+            let stats = shown.draw(&render, &mut display).unwrap();
+            assert!(stats.refused.is_none());
+            if f > 0 {
+                assert!(!stats.full, "case {case} frame {f}: drawn whole");
+                traced += u64::from(stats.traced);
+                frames += 1;
+            }
+            let mut full = Buffer::new(size, Rgb565::BLACK);
+            render.draw(&mut full).unwrap();
+            let diff = display.px.iter().zip(&full.px).filter(|(a, b)| a != b).count();
+            assert_eq!(
+                diff, 0,
+                "case {case} frame {f} ({method}): {diff} pixels differ from the full render"
+            );
+        }
+    }
+    let whole = u64::from(size.width * size.height);
+    assert!(
+        traced < frames * whole / 3,
+        "traced {traced} px in {frames} frames of {whole}"
+    );
+}

@@ -48,12 +48,17 @@ where
         .apply_frame(film.scene, &film.camera, k, scene, &mut params)
         .map_err(Failed::Motion)?;
     let camera = params.build().map_err(Failed::Camera)?;
-    let render = Render::new(scene, &camera).with_method(Method::INTEGER);
-    render.check().map_err(Failed::Frame)?;
-    match shown.draw(&render, display) {
+    // Each use builds its own render. `check` is not inlined, and once a render's
+    // address has gone to such a call the optimiser no longer takes its method for the
+    // constant it was built with: `shown.draw` would dispatch on it at run time and
+    // link every method's code (about 30) instead of the integer kernel and its `f32`
+    // fallback alone.
+    let render = || Render::new(&*scene, &camera).with_method(Method::INTEGER);
+    render().check().map_err(Failed::Frame)?;
+    match shown.draw(&render(), display) {
         Ok(stats) => match stats.refused {
             Some(why) => Err(Failed::Frame(why)),
-            None => Ok((render.arithmetic(), stats)),
+            None => Ok((render().arithmetic(), stats)),
         },
         Err(e) => {
             shown.invalidate();

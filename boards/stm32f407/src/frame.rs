@@ -25,10 +25,15 @@ pub trait Wire<C> {
 /// the changed pixels only), `label` is drawn over band 0, and each run goes out in a
 /// window of its own. Returns the pixels sent.
 ///
+/// Always inlined, as `Changes::draw_band` is: the caller's `frame`, built with a
+/// constant method, then dispatches to that method's code alone; out of line, the
+/// method would be a run-time value here and every method's code would be linked.
+///
 /// # Errors
 ///
 /// A band `draw_band` refused: the runs sent before it are on the display, the rest
 /// not (the caller then forgets what the display shows).
+#[inline(always)]
 pub fn send_runs<C, W, const N: usize, const L: usize, const P: usize, const D: usize>(
     changes: &Changes,
     frame: &Render<'_, N, C, L, P, D>,

@@ -60,7 +60,7 @@ mod fw {
     use embedded_graphics::prelude::*;
     use embedded_graphics::primitives::Rectangle;
     use embedded_hal_bus::spi::ExclusiveDevice;
-    use embedded_raytracer::{BandError, Incremental, Render};
+    use embedded_raytracer::{BandError, Camera, Incremental, Render, Scene};
     use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
     use panic_halt as _;
     use stm32f4xx_hal::{
@@ -144,15 +144,21 @@ mod fw {
         }
     }
 
-    /// Traces band `k` of `frame` into `buf`. Without a frame (the camera or the moved
-    /// sphere refused) or if the band is refused, the band is dark red (not the black
-    /// background) and the reason is returned; the frame still goes out whole, so the
-    /// display's write pointer stays in step. Not inlined: one copy of the render loop
-    /// for every call site.
+    /// Traces band `k` of `scene` seen by `camera` into `buf`. Without a frame (the
+    /// camera or the moved sphere refused) or if the band is refused, the band is dark
+    /// red (not the black background) and the reason is returned; the frame still goes
+    /// out whole, so the display's write pointer stays in step. Not inlined: one copy
+    /// of the render loop for every call site. The render is built here, with the
+    /// default method: a `Render` handed in would be a run-time value in this function,
+    /// and its `draw_band` would link every method's code.
     #[inline(never)]
-    fn trace(frame: Option<&Frame<'_>>, k: u32, buf: &mut [WireRgb565]) -> Option<&'static str> {
+    fn trace(
+        frame: Option<(&Scene<3, 1, 1, 0>, &Camera)>,
+        k: u32,
+        buf: &mut [WireRgb565],
+    ) -> Option<&'static str> {
         let rows = k * BAND_ROWS..(k + 1) * BAND_ROWS;
-        let why = match frame.map(|frame| frame.draw_band(rows, buf)) {
+        let why = match frame.map(|(scene, camera)| Frame::new(scene, camera).draw_band(rows, buf)) {
             Some(Ok(())) => return None,
             None => "motion or camera refused",
             Some(Err(BandError::Frame(_))) => "frame refused (FrameError)",
@@ -295,18 +301,26 @@ mod fw {
                 .apply_frame(&scenes::BOUNCE, &base_camera, n, &mut scene, &mut params)
                 .ok()
                 .and_then(|()| params.build().ok());
-            let frame = camera.as_ref().map(|camera| Render::new(&scene, camera));
-            let changes = frame.as_ref().map(|frame| display_has.update(frame));
+            // The scene and camera of the frame, if both exist. Each use below builds its
+            // own `Frame` (`Render::new`: the default method, a constant): once a
+            // render's address has gone to a call that may not be inlined (`update`
+            // hands it to some), the optimiser no longer takes its method for that
+            // constant, and drawing it would link every method's code.
+            let frame = camera.as_ref().map(|camera| (&scene, camera));
+            let changes = frame.map(|(scene, camera)| display_has.update(&Frame::new(scene, camera)));
             cs.set_low();
-            match (&changes, &frame) {
-                (Some(changes), Some(frame)) if !changes.is_full() && changes.refused().is_none() => {
+            match (&changes, frame) {
+                (Some(changes), Some((scene, camera)))
+                    if !changes.is_full() && changes.refused().is_none() =>
+                {
                     // Only the changed runs, by the core.
                     let mut wire = Core {
                         spi: &spi1,
                         dc: &mut dc,
                     };
                     let draw = |band: &mut [WireRgb565]| draw_label(band, &label);
-                    sent = match frame::send_runs(changes, frame, BAND_ROWS, &mut front[..], draw, &mut wire)
+                    let frame = Frame::new(scene, camera);
+                    sent = match frame::send_runs(changes, &frame, BAND_ROWS, &mut front[..], draw, &mut wire)
                     {
                         Ok(sent) => sent,
                         Err(_) => {
@@ -318,7 +332,7 @@ mod fw {
                 }
                 _ => {
                     // Step 1: band 0 with the label, chip select, address window, RAMWR.
-                    refused = refused.or(trace(frame.as_ref(), 0, &mut front[..]));
+                    refused = refused.or(trace(frame, 0, &mut front[..]));
                     draw_label(&mut front[..], &label);
                     let mut wire = Core {
                         spi: &spi1,
@@ -334,7 +348,7 @@ mod fw {
 
                     // Step 3: trace band k while band k − 1 is on the wire.
                     for k in 1..BANDS {
-                        refused = refused.or(trace(frame.as_ref(), k, &mut back[..]));
+                        refused = refused.or(trace(frame, k, &mut back[..]));
                         let wait_start = DWT::cycle_count();
                         transfer.wait();
                         waited = waited.wrapping_add(DWT::cycle_count().wrapping_sub(wait_start));

@@ -83,13 +83,16 @@ pub const MAX_REGIONS: usize = 12;
 pub const MERGE_GAP: u32 = 5;
 
 /// A traced rectangle is cut into strips of rows that follow the changed runs; a strip
-/// grows while it traces at most this many pixels outside the runs: roughly what a
-/// strip's own frame set-up costs, in pixels of the frame's kind, `[f32 Lab #1, f32 with
-/// features, integer kernel]` (on the Cortex-M4F a lit strip's set-up is about 140
-/// traced pixels' instructions, `lab/firmware/examples/qemu_animation.rs`'s `setup`
-/// line; the other two are estimates). Tuning constants: any values draw the same
-/// pixels.
-pub const STRIP_SETUP: [u32; 3] = [1024, 128, 2048];
+/// grows while it traces at most this many pixels outside the runs: roughly what a new
+/// strip costs, in pixels of the frame's kind, `[f32 Lab #1, f32 with features, integer
+/// kernel]`. A Lab #1 or integer strip is a render of its own and pays the frame's
+/// set-up (the integer kernel's in software `f64`: estimates); the strips of a frame
+/// with features are traced as one frame, its set-up paid once, so a strip costs only
+/// its rows' start (on the Cortex-M4F, `bounce`'s worst frame: 5,158 pixels in 20
+/// strips, 3.50 M instructions, against 5,626 pixels in 7 strips, 4.10 M, when each
+/// strip paid the set-up and the constant was 128: `lab/firmware/examples/
+/// qemu_animation.rs`). Tuning constants: any values draw the same pixels.
+pub const STRIP_SETUP: [u32; 3] = [1024, 16, 2048];
 
 /// At most this many strips a frame; more trace each rectangle whole.
 const MAX_STRIPS: usize = 48;
@@ -109,7 +112,8 @@ pub struct FrameStats {
     pub sent: u32,
     /// Runs (one `fill_contiguous` each) they were sent in.
     pub windows: u32,
-    /// Clipped renders (strips) traced: each pays the frame's set-up.
+    /// Strips (rectangles of rows) traced; in a frame without features each is a
+    /// render of its own and pays the frame's set-up.
     pub strips: u32,
     /// The frame could not be drawn exactly ([`Render::check`]): nothing was sent, and
     /// the next frame is drawn whole.
@@ -272,10 +276,14 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         plan
     }
 
+    // Inlined: an out-of-line call taking the render's address would make its method a
+    // value in memory for the whole draw, and every method's kernel would be linked.
+    #[inline(always)]
     fn remember<C>(&mut self, render: &Render<'_, N, C, L, P, D>, target: Rectangle) {
         self.remember_at(render, target, render.offset());
     }
 
+    #[inline(always)]
     fn remember_at<C>(&mut self, render: &Render<'_, N, C, L, P, D>, target: Rectangle, offset: Point) {
         self.shown = Some(Shown {
             scene: render.scene().clone(),
@@ -866,13 +874,12 @@ impl Changes {
         C: PixelColor + From<Rgb888>,
     {
         let (band, mut sink) = render.band(rows, buf)?;
-        for rect in &self.strips {
-            let clip = rect.intersection(&band);
-            if clip.is_zero_sized() {
-                continue;
-            }
-            let Ok(()) = render.render(clip, Point::zero(), &mut sink);
-        }
+        let clips = self
+            .strips
+            .iter()
+            .map(|rect| rect.intersection(&band))
+            .filter(|clip| !clip.is_zero_sized());
+        let Ok(()) = render.render_clips(clips, Point::zero(), &mut sink);
         match sink.refused {
             None => Ok(()),
             Some(why) => Err(BandError::Frame(why)),
@@ -900,23 +907,25 @@ impl Changes {
         }
         let offset = render.offset();
         let bbox = target.bounding_box();
-        for rect in &self.strips {
-            let clip = Rectangle::new(rect.top_left + offset, rect.size).intersection(&bbox);
-            if clip.is_zero_sized() {
-                continue;
-            }
+        // The strips on the target, traced as one frame (its set-up once).
+        let clips = self
+            .strips
+            .iter()
+            .map(|rect| Rectangle::new(rect.top_left + offset, rect.size).intersection(&bbox))
+            .filter(|clip| !clip.is_zero_sized());
+        for clip in clips.clone() {
             stats.traced += clip.size.width * clip.size.height;
             stats.strips += 1;
-            let mut sink = RunSink {
-                target: &mut *target,
-                changes: self,
-                offset,
-                stats: &mut stats,
-                full: self.full,
-                color: PhantomData,
-            };
-            render.render(clip, offset, &mut sink)?;
         }
+        let mut sink = RunSink {
+            target: &mut *target,
+            changes: self,
+            offset,
+            stats: &mut stats,
+            full: self.full,
+            color: PhantomData,
+        };
+        render.render_clips(clips, offset, &mut sink)?;
         Ok(stats)
     }
 }

@@ -504,6 +504,20 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
         offset: Point,
         sink: &mut K,
     ) -> Result<(), K::Error> {
+        self.render_clips(core::iter::once(clip), offset, sink)
+    }
+
+    /// [`Self::render`] for each of `clips` in turn, as one frame: with lights, planes or
+    /// mirrors and one ray a pixel, the frame's per-frame work (scale, silhouettes,
+    /// shadow regions, ties) is done once for all of them. Each clip's pixels are those
+    /// of its own render.
+    #[inline(always)]
+    pub(crate) fn render_clips<K: RowSink, I: Iterator<Item = Rectangle> + Clone>(
+        &self,
+        clips: I,
+        offset: Point,
+        sink: &mut K,
+    ) -> Result<(), K::Error> {
         dispatch(
             self.method,
             Frame {
@@ -511,7 +525,7 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
                 camera: self.camera,
                 options: self.options,
                 sampling: self.sampling,
-                clip,
+                clips,
                 offset,
                 sink,
                 integer: self.method.arithmetic == Arithmetic::Integer,
@@ -539,21 +553,25 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Visit
     }
 }
 
-/// Rendering one frame, as a visitor of the method's strategy types.
-struct Frame<'a, 'k, const N: usize, const L: usize, const P: usize, const D: usize, K> {
+/// Rendering one frame, as a visitor of the method's strategy types: the part of the
+/// image each of `clips` shows (one clip for a whole or clipped draw).
+struct Frame<'a, 'k, const N: usize, const L: usize, const P: usize, const D: usize, K, I> {
     scene: &'a Scene<N, L, P, D>,
     camera: &'a Camera,
     options: Options,
     sampling: Sampling,
-    clip: Rectangle,
+    clips: I,
     offset: Point,
     sink: &'k mut K,
     /// The integer kernel was asked for (Lab #1 scenes only).
     integer: bool,
 }
 
-impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink> Visit
-    for Frame<'_, '_, N, L, P, D, K>
+impl<const N: usize, const L: usize, const P: usize, const D: usize, K, I> Visit
+    for Frame<'_, '_, N, L, P, D, K, I>
+where
+    K: RowSink,
+    I: Iterator<Item = Rectangle> + Clone,
 {
     type Output = Result<(), K::Error>;
     #[inline(always)]
@@ -564,31 +582,47 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
             Sampling::Grid(n) => self.with_rows::<S, T, Q, _>(GridRows(n.get())),
             // A Lab #1 scene's colours jump only at silhouettes: its edge pixels come
             // from them; a scene with features shares samples between neighbours.
-            Sampling::Adaptive(n) if !Scene::<N, L, P, D>::FEATURES => {
-                let clip = self.clip;
-                self.with_rows::<S, T, Q, _>(SpanAdaptiveRows { n: n.get(), clip })
-            }
+            // Adaptive rows hold their clip: one frame per clip.
             Sampling::Adaptive(n) => {
-                let clip = self.clip;
-                self.with_rows::<S, T, Q, _>(AdaptiveRows { n: n.get(), clip })
+                for clip in self.clips.clone() {
+                    let one = Frame {
+                        scene: self.scene,
+                        camera: self.camera,
+                        options: self.options,
+                        sampling: self.sampling,
+                        clips: core::iter::once(clip),
+                        offset: self.offset,
+                        sink: &mut *self.sink,
+                        integer: self.integer,
+                    };
+                    if Scene::<N, L, P, D>::FEATURES {
+                        one.with_rows::<S, T, Q, _>(AdaptiveRows { n: n.get(), clip })?;
+                    } else {
+                        one.with_rows::<S, T, Q, _>(SpanAdaptiveRows { n: n.get(), clip })?;
+                    }
+                }
+                Ok(())
             }
         }
     }
 }
 
-impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
-    Frame<'_, '_, N, L, P, D, K>
+impl<const N: usize, const L: usize, const P: usize, const D: usize, K, I> Frame<'_, '_, N, L, P, D, K, I>
+where
+    K: RowSink,
+    I: Iterator<Item = Rectangle> + Clone,
 {
     #[inline(always)]
     fn with_rows<S: Stepper, T: TestStrategy, Q: SqrtFn, G: Rows>(self, rows: G) -> Result<(), K::Error> {
         // The scene's type decides the loop at compile time: Lab #1 on spheres, or the
-        // scene-features path (lights, planes, mirrors).
+        // scene-features path (lights, planes, mirrors), whose per-frame work is done
+        // once for every clip.
         if Scene::<N, L, P, D>::FEATURES {
-            lit::render::<N, L, P, D, K, S, T, Q, G>(
+            lit::render::<N, L, P, D, K, S, T, Q, G, I>(
                 self.scene,
                 self.camera,
                 self.options,
-                (self.clip, rows),
+                (self.clips, rows),
                 self.offset,
                 self.sink,
             )
@@ -596,23 +630,29 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize, K: RowSink>
             // The arithmetic, once per frame: the integer kernel where its rule takes the
             // frame, else this f32 method (both out of line, so their stacks never add).
             // Sub-pixel rays are the f32 method's.
-            integer::render_or_f32::<N, L, P, D, K, S, T, Q>(
-                self.scene,
-                self.camera,
-                self.options,
-                self.clip,
-                self.offset,
-                self.sink,
-            )
+            for clip in self.clips {
+                integer::render_or_f32::<N, L, P, D, K, S, T, Q>(
+                    self.scene,
+                    self.camera,
+                    self.options,
+                    clip,
+                    self.offset,
+                    &mut *self.sink,
+                )?;
+            }
+            Ok(())
         } else {
-            lab1::render::<N, L, P, D, K, S, T, Q, G>(
-                self.scene,
-                self.camera,
-                self.options,
-                (self.clip, rows),
-                self.offset,
-                self.sink,
-            )
+            for clip in self.clips {
+                lab1::render::<N, L, P, D, K, S, T, Q, G>(
+                    self.scene,
+                    self.camera,
+                    self.options,
+                    (clip, rows),
+                    self.offset,
+                    &mut *self.sink,
+                )?;
+            }
+            Ok(())
         }
     }
 }

@@ -85,19 +85,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         step_err: f32,
         (scale, culled): (Scale, bool),
     ) -> Option<Self> {
-        let size = camera.size();
-        // Clip in i64: no overflow for any offset or target size. A target whose box
-        // reaches past `i32::MAX` is clipped at the last coordinate that exists, so no
-        // row wraps around and no row's area runs past `i32::MAX`.
-        let span = |origin: i32, len: u32, clip_origin: i32, clip_len: u32| {
-            let lo = i64::from(origin).max(i64::from(clip_origin));
-            let hi = (i64::from(origin) + i64::from(len))
-                .min(i64::from(clip_origin) + i64::from(clip_len))
-                .min(i64::from(i32::MAX) + 1);
-            (lo < hi).then(|| ((lo - i64::from(origin)) as u32, (hi - i64::from(origin)) as u32))
-        };
-        let (i0, i1) = span(offset.x, size.width, clip.top_left.x, clip.size.width)?;
-        let (j0, j1) = span(offset.y, size.height, clip.top_left.y, clip.size.height)?;
+        let (i0, i1, j0, j1) = visible(camera.size(), offset, clip)?;
         // The cone outside which the scale left spheres out (rare: rebuilt here rather
         // than carried by every caller).
         let cone = if culled {
@@ -130,6 +118,20 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
             j0,
             j1,
             offset,
+        })
+    }
+
+    /// The same frame clipped to `clip` instead (target coordinates): its visible
+    /// columns and rows; `None` if it shows nothing. Its pixels are the frame's.
+    #[inline(always)]
+    pub(crate) fn clipped(&self, clip: Rectangle) -> Option<Self> {
+        let (i0, i1, j0, j1) = visible(self.camera.size(), self.offset, clip)?;
+        Some(Self {
+            i0,
+            i1,
+            j0,
+            j1,
+            ..*self
         })
     }
 
@@ -175,6 +177,36 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
             });
         }
     }
+}
+
+/// The columns `i0..i1` and rows `j0..j1` of an image of `size` at `offset` that `clip`
+/// shows; `None` if none. In i64: no overflow for any offset or target size. A target
+/// whose box reaches past `i32::MAX` is clipped at the last coordinate that exists, so
+/// no row wraps around and no row's area runs past `i32::MAX`.
+#[inline(always)]
+fn visible(size: Size, offset: Point, clip: Rectangle) -> Option<(u32, u32, u32, u32)> {
+    let span = |origin: i32, len: u32, clip_origin: i32, clip_len: u32| {
+        let lo = i64::from(origin).max(i64::from(clip_origin));
+        let hi = (i64::from(origin) + i64::from(len))
+            .min(i64::from(clip_origin) + i64::from(clip_len))
+            .min(i64::from(i32::MAX) + 1);
+        (lo < hi).then(|| ((lo - i64::from(origin)) as u32, (hi - i64::from(origin)) as u32))
+    };
+    let (i0, i1) = span(offset.x, size.width, clip.top_left.x, clip.size.width)?;
+    let (j0, j1) = span(offset.y, size.height, clip.top_left.y, clip.size.height)?;
+    Some((i0, i1, j0, j1))
+}
+
+/// The smallest rectangle holding `a` and `b` (clamped to `i32` coordinates: a clip
+/// of the target, whose pixels all have them).
+pub(crate) fn hull(a: Rectangle, b: Rectangle) -> Rectangle {
+    let end = |o: i32, len: u32| i64::from(o) + i64::from(len);
+    let x0 = a.top_left.x.min(b.top_left.x);
+    let y0 = a.top_left.y.min(b.top_left.y);
+    let x1 = end(a.top_left.x, a.size.width).max(end(b.top_left.x, b.size.width));
+    let y1 = end(a.top_left.y, a.size.height).max(end(b.top_left.y, b.size.height));
+    let len = |lo: i32, hi: i64| (hi - i64::from(lo)).clamp(0, i64::from(u32::MAX)) as u32;
+    Rectangle::new(Point::new(x0, y0), Size::new(len(x0, x1), len(y0, y1)))
 }
 
 /// The sizes a frame's [`Scale`] must bring into its exact range: the largest and the

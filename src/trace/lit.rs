@@ -43,7 +43,7 @@ use crate::scene::light::Light;
 use crate::scene::material::Material;
 use crate::scene::sphere::Sphere;
 use crate::scene::Scene;
-use crate::trace::frame::{frame_scale, Frame, FrameSphere};
+use crate::trace::frame::{frame_scale, hull, Frame, FrameSphere};
 use crate::trace::options::{Options, SecondaryOrigin};
 use crate::trace::rows::{Fnv, Ident, Rows};
 use crate::trace::scanline::RowSink;
@@ -483,27 +483,28 @@ pub(crate) fn render<
     T: TestStrategy,
     Q: SqrtFn,
     G: Rows,
+    I: Iterator<Item = Rectangle> + Clone,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
-    (clip, rows): (Rectangle, G),
+    (clips, rows): (I, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
     // `Auto` in a scene type above its limit (see `AUTO_FD_CAPACITY`); a capacity
     // within it never reaches the comparison.
     if T::AUTO && N > AUTO_FD_CAPACITY {
-        return auto_above_limit::<N, L, P, D, K, S, Q, G>(
+        return auto_above_limit::<N, L, P, D, K, S, Q, G, I>(
             scene,
             camera,
             options,
-            (clip, rows),
+            (clips, rows),
             offset,
             sink,
         );
     }
-    by_origin::<N, L, P, D, K, S, T, Q, G>(scene, camera, options, (clip, rows), offset, sink)
+    by_origin::<N, L, P, D, K, S, T, Q, G, I>(scene, camera, options, (clips, rows), offset, sink)
 }
 
 /// `Auto` in a scene type of more than [`AUTO_FD_CAPACITY`] spheres' capacity: the
@@ -519,18 +520,19 @@ fn auto_above_limit<
     S: Stepper,
     Q: SqrtFn,
     G: Rows,
+    I: Iterator<Item = Rectangle> + Clone,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
-    frame: (Rectangle, G),
+    frame: (I, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
     if scene.spheres().len() > AUTO_FD_CAPACITY {
-        render::<N, L, P, D, K, S, Robust, Q, G>(scene, camera, options, frame, offset, sink)
+        render::<N, L, P, D, K, S, Robust, Q, G, I>(scene, camera, options, frame, offset, sink)
     } else {
-        auto_within_limit::<N, L, P, D, K, S, Q, G>(scene, camera, options, frame, offset, sink)
+        auto_within_limit::<N, L, P, D, K, S, Q, G, I>(scene, camera, options, frame, offset, sink)
     }
 }
 
@@ -545,15 +547,16 @@ fn auto_within_limit<
     S: Stepper,
     Q: SqrtFn,
     G: Rows,
+    I: Iterator<Item = Rectangle> + Clone,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
-    frame: (Rectangle, G),
+    frame: (I, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
-    by_origin::<N, L, P, D, K, S, Auto, Q, G>(scene, camera, options, frame, offset, sink)
+    by_origin::<N, L, P, D, K, S, Auto, Q, G, I>(scene, camera, options, frame, offset, sink)
 }
 
 /// [`render`]'s frame with the secondary rays' origin rule, chosen once per frame.
@@ -568,30 +571,31 @@ fn by_origin<
     T: TestStrategy,
     Q: SqrtFn,
     G: Rows,
+    I: Iterator<Item = Rectangle> + Clone,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
-    (clip, rows): (Rectangle, G),
+    (clips, rows): (I, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
     match options.secondary {
-        SecondaryOrigin::Convex => render_with::<N, L, P, D, K, S, T, Q, ConvexExit, G>(
+        SecondaryOrigin::Convex => render_with::<N, L, P, D, K, S, T, Q, ConvexExit, G, I>(
             scene,
             camera,
             options,
             0.0,
-            (clip, rows),
+            (clips, rows),
             offset,
             sink,
         ),
-        SecondaryOrigin::Epsilon(eps) => render_with::<N, L, P, D, K, S, T, Q, EpsilonExit, G>(
+        SecondaryOrigin::Epsilon(eps) => render_with::<N, L, P, D, K, S, T, Q, EpsilonExit, G, I>(
             scene,
             camera,
             options,
             eps,
-            (clip, rows),
+            (clips, rows),
             offset,
             sink,
         ),
@@ -610,12 +614,13 @@ fn render_with<
     Q: SqrtFn,
     O: Exit,
     G: Rows,
+    I: Iterator<Item = Rectangle> + Clone,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
     eps: f32,
-    (clip, rows): (Rectangle, G),
+    (clips, rows): (I, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
@@ -628,11 +633,15 @@ fn render_with<
         Ok(decided) => decided,
         Err(why) => return sink.refused(why),
     };
+    // The frame over every clip's rows (its per-frame work once), then each clip's.
+    let Some(bound) = clips.clone().map(|c| rows.clip(c)).reduce(hull) else {
+        return Ok(());
+    };
     let Some(frame) = Frame::<T, LitSphere>::new::<N, N, L, P, D, S>(
         scene,
         camera,
         options,
-        rows.clip(clip),
+        bound,
         offset,
         &mut spheres,
         step_err,
@@ -691,9 +700,20 @@ fn render_with<
         i0: frame.i0,
         i1: frame.i1,
     };
-    rows.draw_rows::<N, K, S, T, Q, LitSphere, _>(&frame, sink, |j, lo, hi| {
-        LitRow::<T, Q, O, N, L, P, D>::new(&lit, j, lo, hi)
-    })
+    for clip in clips {
+        let Some(frame) = frame.clipped(rows.clip(clip)) else {
+            continue;
+        };
+        let lit = LitFrame {
+            i0: frame.i0,
+            i1: frame.i1,
+            ..lit
+        };
+        rows.draw_rows::<N, K, S, T, Q, LitSphere, _>(&frame, sink, |j, lo, hi| {
+            LitRow::<T, Q, O, N, L, P, D>::new(&lit, j, lo, hi)
+        })?;
+    }
+    Ok(())
 }
 
 /// One row of the scene-features path: the planes' spans, the shadow spans and, per

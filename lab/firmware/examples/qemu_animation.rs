@@ -153,12 +153,16 @@ mod fw {
         params: CameraParams,
         animation: &Animation<M>,
     ) -> bool {
-        // A constant in each instantiation, and the render is made inside each timed
-        // closure: the measured code dispatches on a known method, as a firmware's does.
-        let method = if INTEGER {
-            Method::INTEGER
-        } else {
-            Method::TARGET_DEFAULT
+        // A constant in each instantiation, named inside each timed closure (a captured
+        // local would be read through the closure's environment, a run-time value that
+        // links every method): the measured code dispatches on a known method, as a
+        // firmware's does.
+        let method = || {
+            if INTEGER {
+                Method::INTEGER
+            } else {
+                Method::TARGET_DEFAULT
+            }
         };
         let mut scene = base.clone();
         let mut at = params;
@@ -179,7 +183,7 @@ mod fw {
             };
             let mut stats = None;
             let instr = run.timed(|| {
-                let render = Render::new(&scene, &camera).with_method(method);
+                let render = Render::new(&scene, &camera).with_method(method());
                 stats = shown.draw(&render, &mut display).ok();
             });
             let Some(stats) = stats else { return false };
@@ -192,7 +196,9 @@ mod fw {
                 bytes: 0,
             };
             let full_instr = run.timed(|| {
-                let _ = Render::new(&scene, &camera).with_method(method).draw(&mut whole);
+                let _ = Render::new(&scene, &camera)
+                    .with_method(method())
+                    .draw(&mut whole);
             });
             run.platform.print(format_args!(
                 "anim {} frame {} traced {} sent {} windows {} bytes {} instr {} full_instr {} first {} strips {}",
@@ -211,13 +217,13 @@ mod fw {
         // The plan and one strip's set-up: a frame whose only change is one pixel.
         shown.invalidate_area(Rectangle::new(Point::new(0, 0), Size::new(1, 1)));
         let Ok(camera) = at.build() else { return false };
-        let render = Render::new(&scene, &camera).with_method(method);
+        let render = Render::new(&scene, &camera).with_method(method());
         let mut display = Display {
             px: &mut *fb,
             bytes: 0,
         };
         let setup = run.timed(|| {
-            let _ = shown.draw(&Render::new(&scene, &camera).with_method(method), &mut display);
+            let _ = shown.draw(&Render::new(&scene, &camera).with_method(method()), &mut display);
         });
         run.platform.print(format_args!("setup {} instr {}", name, setup));
         // The display against the last frame's full render.

@@ -377,12 +377,12 @@ impl<const N: usize, C: PixelColor + From<Rgb888>, const L: usize, const P: usiz
         if !self.integer_kind() {
             return Err(IntegerError::Refused);
         }
-        match integer::render::<N, _>(
+        match integer::render::<N, _, _>(
             self.scene.spheres(),
             self.scene.background(),
             self.camera,
             self.options,
-            clip,
+            core::iter::once(clip),
             offset,
             sink,
         ) {
@@ -507,10 +507,11 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
         self.render_clips(core::iter::once(clip), offset, sink)
     }
 
-    /// [`Self::render`] for each of `clips` in turn, as one frame: with lights, planes or
-    /// mirrors and one ray a pixel, the frame's per-frame work (scale, silhouettes,
-    /// shadow regions, ties) is done once for all of them. Each clip's pixels are those
-    /// of its own render.
+    /// [`Self::render`] for each of `clips` in turn, as one frame: the frame's per-frame
+    /// work (scale, silhouettes, shadow regions, ties, the integer kernel's rule and
+    /// quantisation) is done once for all of them, except with adaptive sampling (whose
+    /// rows hold their clip: a frame each). Each clip's pixels are those of its own
+    /// render.
     #[inline(always)]
     pub(crate) fn render_clips<K: RowSink, I: Iterator<Item = Rectangle> + Clone>(
         &self,
@@ -615,7 +616,7 @@ where
     #[inline(always)]
     fn with_rows<S: Stepper, T: TestStrategy, Q: SqrtFn, G: Rows>(self, rows: G) -> Result<(), K::Error> {
         // The scene's type decides the loop at compile time: Lab #1 on spheres, or the
-        // scene-features path (lights, planes, mirrors), whose per-frame work is done
+        // scene-features path (lights, planes, mirrors); each does its per-frame work
         // once for every clip.
         if Scene::<N, L, P, D>::FEATURES {
             lit::render::<N, L, P, D, K, S, T, Q, G, I>(
@@ -630,29 +631,23 @@ where
             // The arithmetic, once per frame: the integer kernel where its rule takes the
             // frame, else this f32 method (both out of line, so their stacks never add).
             // Sub-pixel rays are the f32 method's.
-            for clip in self.clips {
-                integer::render_or_f32::<N, L, P, D, K, S, T, Q>(
-                    self.scene,
-                    self.camera,
-                    self.options,
-                    clip,
-                    self.offset,
-                    &mut *self.sink,
-                )?;
-            }
-            Ok(())
+            integer::render_or_f32::<N, L, P, D, K, S, T, Q, I>(
+                self.scene,
+                self.camera,
+                self.options,
+                self.clips,
+                self.offset,
+                self.sink,
+            )
         } else {
-            for clip in self.clips {
-                lab1::render::<N, L, P, D, K, S, T, Q, G>(
-                    self.scene,
-                    self.camera,
-                    self.options,
-                    (clip, rows),
-                    self.offset,
-                    &mut *self.sink,
-                )?;
-            }
-            Ok(())
+            lab1::render::<N, L, P, D, K, S, T, Q, G, I>(
+                self.scene,
+                self.camera,
+                self.options,
+                (self.clips, rows),
+                self.offset,
+                self.sink,
+            )
         }
     }
 }

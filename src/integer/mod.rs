@@ -81,6 +81,7 @@ use crate::method::intersect::TestStrategy;
 use crate::method::stepping::Stepper;
 use crate::scene::sphere::Sphere;
 use crate::scene::{Hit, Scene};
+use crate::trace::frame::{hull, visible};
 use crate::trace::options::{Options, Sample};
 use crate::trace::scanline::RowSink;
 use crate::trace::scanline::{ColorRuns, PixelRow};
@@ -182,19 +183,20 @@ pub(crate) fn render_or_f32<
     S: Stepper,
     T: TestStrategy,
     Q: SqrtFn,
+    I: Iterator<Item = Rectangle> + Clone,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
-    clip: Rectangle,
+    clips: I,
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
     let (spheres, background) = (scene.spheres(), scene.background());
-    if let Some(done) = render::<N, K>(spheres, background, camera, options, clip, offset, sink) {
+    if let Some(done) = render::<N, K, I>(spheres, background, camera, options, clips.clone(), offset, sink) {
         return done;
     }
-    f32_frame::<N, L, P, D, K, S, T, Q>(scene, camera, options, clip, offset, sink)
+    f32_frame::<N, L, P, D, K, S, T, Q, I>(scene, camera, options, clips, offset, sink)
 }
 
 /// The f32 method's frame, out of line (see [`render_or_f32`]).
@@ -208,51 +210,67 @@ fn f32_frame<
     S: Stepper,
     T: TestStrategy,
     Q: SqrtFn,
+    I: Iterator<Item = Rectangle> + Clone,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
-    clip: Rectangle,
+    clips: I,
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
-    crate::trace::lab1::render::<N, L, P, D, K, S, T, Q, crate::trace::rows::CenterRows>(
+    crate::trace::lab1::render::<N, L, P, D, K, S, T, Q, crate::trace::rows::CenterRows, I>(
         scene,
         camera,
         options,
-        (clip, crate::trace::rows::CenterRows),
+        (clips, crate::trace::rows::CenterRows),
         offset,
         sink,
     )
 }
 
-/// Draws a frame of a scene without lights, planes or mirrors with the integer kernel,
-/// or returns `None` (nothing drawn) where its rule does not take the frame.
+/// Draws the part of a frame each of `clips` shows (a scene without lights, planes or
+/// mirrors) with the integer kernel, its per-frame rule and quantisation once for all of
+/// them, or returns `None` (nothing drawn) where its rule does not take the frame.
 ///
 /// Out of line: its per-sphere buffers live in its own stack frame, never beside the
 /// `f32` path's (which runs only after this has returned).
 #[inline(never)]
-pub(crate) fn render<const N: usize, K: RowSink>(
+pub(crate) fn render<const N: usize, K: RowSink, I: Iterator<Item = Rectangle> + Clone>(
     spheres: &[Sphere],
     background: Rgb888,
     camera: &Camera,
     options: Options,
-    clip: Rectangle,
+    clips: I,
     offset: Point,
     sink: &mut K,
 ) -> Option<Result<(), K::Error>> {
     let mut int_spheres: Vec<IntSphere, N> = Vec::new();
     let mut active: Vec<Active<'_>, N> = Vec::new();
+    let Some(bound) = clips.clone().reduce(hull) else {
+        return Some(Ok(()));
+    };
     match IntFrame::new(
         int_spheres.as_mut_view(),
         spheres,
         background,
         camera,
         options,
-        clip,
+        bound,
         offset,
     ) {
-        Ok(frame) => Some(draw_rows(&frame, active.as_mut_view(), sink)),
+        Ok(mut frame) => {
+            for clip in clips {
+                let Some((i0, i1, j0, j1)) = visible(camera.size(), offset, clip) else {
+                    continue;
+                };
+                (frame.i0, frame.i1, frame.j0, frame.j1) = (i0, i1, j0, j1);
+                if let Err(e) = draw_rows(&frame, active.as_mut_view(), sink) {
+                    return Some(Err(e));
+                }
+            }
+            Some(Ok(()))
+        }
         Err(Refusal::Invisible) => Some(Ok(())),
         Err(Refusal::Bounds) => None,
     }
@@ -294,20 +312,9 @@ impl<'a> IntFrame<'a> {
         clip: Rectangle,
         offset: Point,
     ) -> Result<Self, Refusal> {
-        let size = camera.size();
-        // Clip in i64, as the f32 frame does (`frame.rs`).
-        let span = |origin: i32, len: u32, clip_origin: i32, clip_len: u32| {
-            let lo = i64::from(origin).max(i64::from(clip_origin));
-            let hi = (i64::from(origin) + i64::from(len))
-                .min(i64::from(clip_origin) + i64::from(clip_len))
-                .min(i64::from(i32::MAX) + 1);
-            (lo < hi).then(|| ((lo - i64::from(origin)) as u32, (hi - i64::from(origin)) as u32))
-        };
         let plan = plan(scene, camera, options, buf).ok_or(Refusal::Bounds)?;
-        let (i0, i1) =
-            span(offset.x, size.width, clip.top_left.x, clip.size.width).ok_or(Refusal::Invisible)?;
-        let (j0, j1) =
-            span(offset.y, size.height, clip.top_left.y, clip.size.height).ok_or(Refusal::Invisible)?;
+        // Clipped as the f32 frame is.
+        let (i0, i1, j0, j1) = visible(camera.size(), offset, clip).ok_or(Refusal::Invisible)?;
         Ok(Self {
             camera,
             k: plan.k,

@@ -184,7 +184,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
 /// whose box reaches past `i32::MAX` is clipped at the last coordinate that exists, so
 /// no row wraps around and no row's area runs past `i32::MAX`.
 #[inline(always)]
-fn visible(size: Size, offset: Point, clip: Rectangle) -> Option<(u32, u32, u32, u32)> {
+pub(crate) fn visible(size: Size, offset: Point, clip: Rectangle) -> Option<(u32, u32, u32, u32)> {
     let span = |origin: i32, len: u32, clip_origin: i32, clip_len: u32| {
         let lo = i64::from(origin).max(i64::from(clip_origin));
         let hi = (i64::from(origin) + i64::from(len))

@@ -12,7 +12,7 @@ use crate::math::SqrtFn;
 use crate::method::intersect::{Auto, Robust, TestStrategy, AUTO_FD_CAPACITY};
 use crate::method::stepping::Stepper;
 use crate::scene::Scene;
-use crate::trace::frame::{frame_scale, Frame};
+use crate::trace::frame::{frame_scale, hull, Frame};
 use crate::trace::options::Options;
 use crate::trace::rows::Rows;
 use crate::trace::scanline::{Lab1Row, RowSink};
@@ -37,27 +37,28 @@ pub(crate) fn render<
     T: TestStrategy,
     Q: SqrtFn,
     G: Rows,
+    I: Iterator<Item = Rectangle> + Clone,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
-    (clip, rows): (Rectangle, G),
+    (clips, rows): (I, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
     // `Auto` in a scene type above its limit (see `AUTO_FD_CAPACITY`); a capacity
     // within it never reaches the comparison.
     if T::AUTO && N > AUTO_FD_CAPACITY {
-        return auto_above_limit::<N, L, P, D, K, S, Q, G>(
+        return auto_above_limit::<N, L, P, D, K, S, Q, G, I>(
             scene,
             camera,
             options,
-            (clip, rows),
+            (clips, rows),
             offset,
             sink,
         );
     }
-    frame_of::<N, N, L, P, D, K, S, T, Q, G>(scene, camera, options, (clip, rows), offset, sink)
+    frame_of::<N, N, L, P, D, K, S, T, Q, G, I>(scene, camera, options, (clips, rows), offset, sink)
 }
 
 /// `Auto` in a scene type of more than [`AUTO_FD_CAPACITY`] spheres' capacity: the
@@ -73,19 +74,20 @@ fn auto_above_limit<
     S: Stepper,
     Q: SqrtFn,
     G: Rows,
+    I: Iterator<Item = Rectangle> + Clone,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
-    frame: (Rectangle, G),
+    frame: (I, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
     // Each branch out of line, so that their frames never add up.
     if scene.spheres().len() > AUTO_FD_CAPACITY {
-        render::<N, L, P, D, K, S, Robust, Q, G>(scene, camera, options, frame, offset, sink)
+        render::<N, L, P, D, K, S, Robust, Q, G, I>(scene, camera, options, frame, offset, sink)
     } else {
-        auto_within_limit::<N, L, P, D, K, S, Q, G>(scene, camera, options, frame, offset, sink)
+        auto_within_limit::<N, L, P, D, K, S, Q, G, I>(scene, camera, options, frame, offset, sink)
     }
 }
 
@@ -101,15 +103,16 @@ fn auto_within_limit<
     S: Stepper,
     Q: SqrtFn,
     G: Rows,
+    I: Iterator<Item = Rectangle> + Clone,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
-    frame: (Rectangle, G),
+    frame: (I, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
-    frame_of::<N, AUTO_FD_CAPACITY, L, P, D, K, S, Auto, Q, G>(scene, camera, options, frame, offset, sink)
+    frame_of::<N, AUTO_FD_CAPACITY, L, P, D, K, S, Auto, Q, G, I>(scene, camera, options, frame, offset, sink)
 }
 
 /// [`render`]'s frame, its per-sphere data holding `M` spheres, at least the scene's
@@ -126,11 +129,12 @@ fn frame_of<
     T: TestStrategy,
     Q: SqrtFn,
     G: Rows,
+    I: Iterator<Item = Rectangle> + Clone,
 >(
     scene: &Scene<N, L, P, D>,
     camera: &Camera,
     options: Options,
-    (clip, rows): (Rectangle, G),
+    (clips, rows): (I, G),
     offset: Point,
     sink: &mut K,
 ) -> Result<(), K::Error> {
@@ -144,11 +148,15 @@ fn frame_of<
         Ok(decided) => decided,
         Err(why) => return sink.refused(why),
     };
+    // The frame over every clip's rows (its per-frame work once), then each clip's.
+    let Some(bound) = clips.clone().map(|c| rows.clip(c)).reduce(hull) else {
+        return Ok(());
+    };
     let Some(frame) = Frame::<T, Lab1>::new::<N, M, L, P, D, S>(
         scene,
         camera,
         options,
-        rows.clip(clip),
+        bound,
         offset,
         &mut spheres,
         step_err,
@@ -157,5 +165,10 @@ fn frame_of<
         return Ok(()); // nothing visible
     };
     let (w, background) = (camera.w(), frame.background);
-    rows.draw_rows::<M, K, S, T, Q, Lab1, _>(&frame, sink, |_, _, _| Lab1Row { w, background })
+    for clip in clips {
+        if let Some(frame) = frame.clipped(rows.clip(clip)) {
+            rows.draw_rows::<M, K, S, T, Q, Lab1, _>(&frame, sink, |_, _, _| Lab1Row { w, background })?;
+        }
+    }
+    Ok(())
 }

@@ -323,19 +323,10 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             Err(why) => return Changes::refusal(size, why),
         };
         let full = Changes::full(size);
-        let Some(shown) = &self.shown else {
-            return full;
+        let shown = match &self.shown {
+            Some(shown) if shown.same_frame(render, target, offset) => shown,
+            _ => return full,
         };
-        if !(same_params(&shown.params, camera.params())
-            && shown.method == render.method()
-            && shown.sampling == render.sampling()
-            && same_options(render.options(), shown.options)
-            && shown.offset == offset
-            && shown.target == target
-            && same_frame_wide(&shown.scene, scene))
-        {
-            return full;
-        }
         let old = dispatch(
             render.method(),
             Probe {
@@ -348,10 +339,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             Ok((s, c, _, _)) if s.0.to_bits() == scale.0.to_bits() && c == culled => {}
             _ => return full,
         }
-        let changed = |k: usize| match (shown.scene.spheres().get(k), scene.spheres().get(k)) {
-            (Some(a), Some(b)) => !same_sphere(a, b),
-            _ => true,
-        };
+        let changed = |k: usize| shown.changed(scene, k);
         let any_changed = (0..scene.spheres().len()).any(changed);
         if any_changed && features && !lit::same_ties(&shown.scene, scene, camera.eye()) {
             return full;
@@ -444,44 +432,62 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
     ) -> Option<Changes> {
         let (camera, scene, options) = (render.camera(), render.scene(), render.options());
         let size = camera.size();
-        let full = Some(Changes::full(size));
+        let shown = match &self.shown {
+            Some(shown) if shown.same_frame(render, target, offset) => shown,
+            // The whole frame, if the integer kernel's rule takes it.
+            _ => {
+                return crate::integer::regions::<N>(scene.spheres(), camera, options, |_| false, |_, _| {})
+                    .map(|_| Changes::full(size));
+            }
+        };
+        let changed = |k: usize| shown.changed(scene, k);
         let mut plan = Changes::empty(size);
         let mut ok = true;
-        let new_key = crate::integer::regions::<N>(scene.spheres(), camera, options, |_| false, |_, _| {});
-        let Some(shown) = &self.shown else {
-            return new_key.and(full);
-        };
-        if !(same_params(&shown.params, camera.params())
-            && shown.method == render.method()
-            && shown.sampling == render.sampling()
-            && same_options(options, shown.options)
-            && shown.offset == offset
-            && shown.target == target
-            && same_frame_wide(&shown.scene, scene))
-        {
-            return new_key.and(full);
-        }
-        let changed = |k: usize| match (shown.scene.spheres().get(k), scene.spheres().get(k)) {
-            (Some(a), Some(b)) => !same_sphere(a, b),
-            _ => true,
-        };
         let mut add = |rows: (u32, u32), cut| ok &= plan.push(Some(Region::Int { rows, cut }));
+        // Each frame's quantisation, found with its changed spheres' cuts: the cuts are
+        // the plan only if the two quantisations are equal.
+        let new_key = crate::integer::regions::<N>(scene.spheres(), camera, options, changed, &mut add);
         let old_key = crate::integer::regions::<N>(shown.scene.spheres(), camera, options, changed, &mut add);
         match (old_key, new_key) {
             (None, None) => return None,
             (Some(a), Some(b)) if a == b => {}
-            _ => return full,
+            _ => return Some(Changes::full(size)),
         }
-        let _ = crate::integer::regions::<N>(scene.spheres(), camera, options, changed, &mut add);
         if let Some(stale) = self.stale {
             ok &= plan.push(Some(Region::Rect(stale)));
         }
         if !ok {
-            return full;
+            return Some(Changes::full(size));
         }
         plan.strip_setup = STRIP_SETUP[2];
         plan.merge();
         Some(plan)
+    }
+}
+
+impl<const N: usize, const L: usize, const P: usize, const D: usize> Shown<N, L, P, D> {
+    /// Whether `render`, drawn onto `target` (its bounding box) at `offset`, keeps this
+    /// frame's frame-wide state (rule step 1) as far as the inputs say: the camera, the
+    /// method, sampling, options, offset and target, and the scene's frame-wide numbers.
+    /// What the method derives from them (the frame's scale, the integer kernel's
+    /// quantisation) each rule compares itself.
+    fn same_frame<C>(&self, render: &Render<'_, N, C, L, P, D>, target: Rectangle, offset: Point) -> bool {
+        same_params(&self.params, render.camera().params())
+            && self.method == render.method()
+            && self.sampling == render.sampling()
+            && same_options(render.options(), self.options)
+            && self.offset == offset
+            && self.target == target
+            && same_frame_wide(&self.scene, render.scene())
+    }
+
+    /// Whether sphere `k` of `scene` differs from this frame's bit for bit (rule step
+    /// 2); a sphere only one of them has differs.
+    fn changed(&self, scene: &Scene<N, L, P, D>, k: usize) -> bool {
+        match (self.scene.spheres().get(k), scene.spheres().get(k)) {
+            (Some(a), Some(b)) => !same_sphere(a, b),
+            _ => true,
+        }
     }
 }
 

@@ -91,7 +91,7 @@ pub const MERGE_GAP: u32 = 5;
 pub const STRIP_SETUP: [u32; 3] = [1024, 128, 2048];
 
 /// At most this many strips a frame; more trace each rectangle whole.
-const MAX_STRIPS: usize = 48;
+const MAX_STRIPS: usize = 32;
 
 /// What one incremental frame cost: pixels traced (the area of the rectangles the render
 /// was clipped to, where the kernel traced every pixel its spans reach), pixels sent and
@@ -119,7 +119,7 @@ pub struct FrameStats {
 /// settings of the last frame drawn. Its size is the scene's
 /// (`size_of::<Scene<N, L, P, D>>()`: 32 bytes a sphere of capacity `N`, 24 a light, 56
 /// a plane, and 40) and 128 bytes more; it holds no pixel. While it draws, its plan of
-/// the frame ([`Changes`], 1,704 bytes on a 32-bit target) is on the stack beside the
+/// the frame ([`Changes`], 820 bytes on a 32-bit target) is on the stack beside the
 /// render's own.
 ///
 /// ```
@@ -322,10 +322,10 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             Ok(p) => p,
             Err(why) => return Changes::refusal(size, why),
         };
-        let full = Changes::full(size);
+        let full = || Changes::full(size);
         let shown = match &self.shown {
             Some(shown) if shown.same_frame(render, target, offset) => shown,
-            _ => return full,
+            _ => return full(),
         };
         let old = dispatch(
             render.method(),
@@ -337,12 +337,12 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         );
         match old {
             Ok((s, c, _, _)) if s.0.to_bits() == scale.0.to_bits() && c == culled => {}
-            _ => return full,
+            _ => return full(),
         }
         let changed = |k: usize| shown.changed(scene, k);
         let any_changed = (0..scene.spheres().len()).any(changed);
         if any_changed && features && !lit::same_ties(&shown.scene, scene, camera.eye()) {
-            return full;
+            return full();
         }
         let pad = match render.sampling() {
             Sampling::Center => 0,
@@ -355,14 +355,15 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             && ((shadows && scene.planes().len() > 1)
                 || (mirrors && scene.planes().iter().any(|p| p.material.reflect != 0.0)))
         {
-            return full;
+            return full();
         }
         let cone = if culled {
             ViewCone::new(camera, step_err)
         } else {
             None
         };
-        let mut plan = Changes::empty(size);
+        let kind = if features { STRIP_SETUP[1] } else { STRIP_SETUP[0] };
+        let mut plan = Changes::empty(size, kind, pad);
         let frame = Sil {
             camera,
             scale,
@@ -372,7 +373,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             span_culling: render.options().span_culling,
         };
         let mut ok = true;
-        let add_sphere = |plan: &mut Changes, s: &Sphere| plan.push(Region::silhouette(frame.of(s), pad));
+        let add_sphere = |plan: &mut Changes, s: &Sphere| plan.push_silhouette(frame.of(s));
         for (k, new_s) in scene.spheres().iter().enumerate() {
             if !changed(k) {
                 continue;
@@ -383,7 +384,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
                 if shadows {
                     for s in [old_s, new_s] {
                         lit::shadow_regions(scene, s, camera, (scale, step_err), |sil| {
-                            ok &= plan.push(Region::silhouette(sil, pad));
+                            ok &= plan.push_silhouette(sil);
                         });
                     }
                 }
@@ -406,12 +407,11 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             }
         }
         if let Some(stale) = self.stale {
-            ok &= plan.push(Some(Region::Rect(stale)));
+            ok &= plan.push_rect(stale);
         }
         if !ok {
-            return full;
+            return full();
         }
-        plan.strip_setup = if features { STRIP_SETUP[1] } else { STRIP_SETUP[0] };
         plan.merge();
         plan
     }
@@ -441,9 +441,9 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             }
         };
         let changed = |k: usize| shown.changed(scene, k);
-        let mut plan = Changes::empty(size);
+        let mut plan = Changes::empty(size, STRIP_SETUP[2], 0);
         let mut ok = true;
-        let mut add = |rows: (u32, u32), cut| ok &= plan.push(Some(Region::Int { rows, cut }));
+        let mut add = |rows: (u32, u32), cut| ok &= plan.push_cut(rows, cut);
         // Each frame's quantisation, found with its changed spheres' cuts: the cuts are
         // the plan only if the two quantisations are equal.
         let new_key = crate::integer::regions::<N>(scene.spheres(), camera, options, changed, &mut add);
@@ -454,12 +454,11 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             _ => return Some(Changes::full(size)),
         }
         if let Some(stale) = self.stale {
-            ok &= plan.push(Some(Region::Rect(stale)));
+            ok &= plan.push_rect(stale);
         }
         if !ok {
             return Some(Changes::full(size));
         }
-        plan.strip_setup = STRIP_SETUP[2];
         plan.merge();
         Some(plan)
     }
@@ -546,51 +545,111 @@ impl Sil<'_> {
     }
 }
 
-/// One region of the image that can have changed.
+// Every edge of a rectangle of the image fits an `Area`'s `u16`.
+const _: () = assert!(crate::math::limits::MAX_RESOLUTION <= u16::MAX as u32);
+
+/// A rectangle of the image, `[x0, x1) × [y0, y1)` in pixels. An image is at most
+/// `MAX_RESOLUTION` pixels each way, so each edge is a `u16`: half a `Rectangle`, for
+/// the plan's rectangles and strips.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Area {
+    x0: u16,
+    y0: u16,
+    x1: u16,
+    y1: u16,
+}
+
+impl Area {
+    /// From edges of the image (each at most `MAX_RESOLUTION`).
+    fn new(x0: u32, y0: u32, x1: u32, y1: u32) -> Self {
+        Self {
+            x0: edge(x0),
+            y0: edge(y0),
+            x1: edge(x1),
+            y1: edge(y1),
+        }
+    }
+
+    /// A rectangle of the image.
+    fn of(r: Rectangle) -> Self {
+        let (x0, y0) = (r.top_left.x.max(0) as u32, r.top_left.y.max(0) as u32);
+        Self::new(x0, y0, x0 + r.size.width, y0 + r.size.height)
+    }
+
+    fn rect(self) -> Rectangle {
+        let ((x0, x1), (y0, y1)) = (self.cols(), self.rows());
+        Rectangle::new(
+            Point::new(x0 as i32, y0 as i32),
+            Size::new(x1.saturating_sub(x0), y1.saturating_sub(y0)),
+        )
+    }
+
+    fn cols(self) -> (u32, u32) {
+        (u32::from(self.x0), u32::from(self.x1))
+    }
+
+    fn rows(self) -> (u32, u32) {
+        (u32::from(self.y0), u32::from(self.y1))
+    }
+
+    fn has_row(self, j: u32) -> bool {
+        u32::from(self.y0) <= j && j < u32::from(self.y1)
+    }
+
+    fn pixels(self) -> u32 {
+        let ((x0, x1), (y0, y1)) = (self.cols(), self.rows());
+        x1.saturating_sub(x0) * y1.saturating_sub(y0)
+    }
+
+    /// Whether the two share a pixel.
+    fn meets(self, o: Area) -> bool {
+        self.x0 < o.x1 && o.x0 < self.x1 && self.y0 < o.y1 && o.y0 < self.y1
+    }
+
+    /// The smallest rectangle holding both.
+    fn bounding(self, o: Area) -> Area {
+        Area {
+            x0: self.x0.min(o.x0),
+            y0: self.y0.min(o.y0),
+            x1: self.x1.max(o.x1),
+            y1: self.y1.max(o.y1),
+        }
+    }
+}
+
+/// An edge or size of the image as a `u16` (it is at most `MAX_RESOLUTION`).
+fn edge(v: u32) -> u16 {
+    u16::try_from(v).unwrap_or(u16::MAX)
+}
+
+/// One region of the image that can have changed; its rows and columns are its entry's
+/// bounding box.
 #[derive(Clone, Copy, Debug)]
 enum Region {
-    /// A silhouette widened by `pad` pixels each way, its reach constants, and the rows
-    /// it covers.
-    Ellipse {
-        sil: Silhouette,
-        reach: (f32, f32),
-        pad: u32,
-    },
-    /// A sphere's rows and the integer kernel's cut of them.
-    Int { rows: (u32, u32), cut: IntCut },
-    /// A rectangle of the image.
-    Rect(Rectangle),
+    /// A silhouette, widened by the plan's `pad` pixels each way.
+    Ellipse(Silhouette),
+    /// A sphere's cut in the integer kernel (one that culls nothing is a `Rect`).
+    Int(IntCut),
+    /// Its bounding box.
+    Rect,
 }
 
 impl Region {
-    fn silhouette(sil: Silhouette, pad: u32) -> Option<Self> {
-        if sil.is_all() {
-            return None;
-        }
-        Some(Region::Ellipse {
-            sil,
-            reach: sil.reach_consts(),
-            pad,
-        })
-    }
-
-    /// Its columns `[lo, hi)` in row `j` of an image `width` wide.
-    fn span(&self, j: u32, width: u32) -> Option<(u32, u32)> {
+    /// Its columns `[lo, hi)` in row `j` of an image `width` wide; for `Int` a row of
+    /// its sphere's rows. `None` for `Rect` (its box is its run).
+    fn cut(&self, j: u32, width: u32, pad: u32) -> Option<(u32, u32)> {
         match *self {
-            Region::Rect(r) => {
-                let (y0, y1) = (r.top_left.y as u32, r.top_left.y as u32 + r.size.height);
-                (y0 <= j && j < y1).then_some((r.top_left.x as u32, r.top_left.x as u32 + r.size.width))
-            }
-            Region::Int { rows, cut } => (rows.0 <= j && j < rows.1)
-                .then(|| cut.row_span(j, width))
-                .flatten(),
-            Region::Ellipse { sil, pad: 0, .. } => sil.row_span(j, 0, width),
-            Region::Ellipse { sil, reach, pad } => {
+            Region::Rect => None,
+            Region::Int(cut) => cut.row_span(j, width),
+            Region::Ellipse(sil) if pad == 0 => sil.row_span(j, 0, width),
+            Region::Ellipse(sil) => {
                 // A pixel's rays (and, with `pad`, its neighbours') lie within
                 // `pad + ½` of its centre: the silhouette's reach over those rows,
-                // widened as much in columns.
+                // widened as much in columns. The reach's two roots are taken per row:
+                // only a frame of several rays a pixel widens, and there they are a few
+                // of the row's rays.
                 let h = pad as f32 + 0.5;
-                let (lo, hi) = sil.band_reach(j, h, reach)?;
+                let (lo, hi) = sil.band_reach(j, h, sil.reach_consts())?;
                 let lo = libm::floorf(lo - h).max(0.0).min(width as f32);
                 let hi = (libm::ceilf(hi + h) + 1.0).max(0.0).min(width as f32);
                 // NaN clamps to a bound: the whole row.
@@ -599,62 +658,77 @@ impl Region {
             }
         }
     }
+}
 
-    /// The rows it can reach in an image `height` tall.
-    fn rows(&self, height: u32) -> (u32, u32) {
-        match *self {
-            Region::Rect(r) => (r.top_left.y as u32, r.top_left.y as u32 + r.size.height),
-            Region::Int { rows, cut } => {
-                if cut == IntCut::All {
-                    (0, height)
-                } else {
-                    (rows.0.min(height), rows.1.min(height))
-                }
-            }
-            Region::Ellipse { sil, pad, .. } => {
-                let (a, b) = sil.rows(height);
-                if pad == 0 || a >= b {
-                    (a, b)
-                } else {
-                    (a.saturating_sub(pad + 1), b.saturating_add(pad + 1).min(height))
-                }
-            }
+/// A region and its bounding box (the rows and columns of its runs).
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    region: Region,
+    bbox: Area,
+}
+
+impl Entry {
+    /// Its run `[lo, hi)` in row `j` of an image `width` wide.
+    #[inline]
+    fn span(&self, j: u32, width: u32, pad: u32) -> Option<(u32, u32)> {
+        if !self.bbox.has_row(j) {
+            return None;
+        }
+        match self.region {
+            Region::Rect => Some(self.bbox.cols()),
+            region => region.cut(j, width, pad),
         }
     }
 }
 
-/// The regions of one frame, their rectangles, and what tracing them costs.
+/// The regions of one frame, their rectangles, and what tracing them costs. It takes
+/// 820 bytes on a 32-bit target.
 #[derive(Clone, Debug)]
 pub struct Changes {
-    size: Size,
-    regions: Vec<(Region, Rectangle), MAX_REGIONS>,
-    rects: Vec<Rectangle, MAX_REGIONS>,
+    width: u16,
+    height: u16,
+    /// The regions. A row's runs are merged only with runs of the same rectangle.
+    regions: Vec<Entry, MAX_REGIONS, u8>,
+    /// The regions' boxes, those that overlap merged into one, until none does.
+    rects: Vec<Area, MAX_REGIONS, u8>,
     /// The rectangles the render is clipped to: each of `rects` cut into strips of rows
     /// that follow the runs' extent.
-    strips: Vec<Rectangle, MAX_STRIPS>,
+    strips: Vec<Area, MAX_STRIPS, u8>,
     /// The frame kind's [`STRIP_SETUP`].
     strip_setup: u32,
-    refused: Option<FrameError>,
+    /// Pixels a silhouette is widened by each way: the sampling's footprint (rule step 3).
+    pad: u8,
     full: bool,
+    refused: Option<FrameError>,
 }
 
+// The plan sits on the stack beside the render's own while a frame draws (the size the
+// `Incremental` and `Changes` docs state).
+#[cfg(target_pointer_width = "32")]
+const _: () = assert!(size_of::<Changes>() <= 820);
+
 impl Changes {
-    fn empty(size: Size) -> Self {
+    fn empty(size: Size, strip_setup: u32, pad: u32) -> Self {
         Self {
-            size,
+            width: edge(size.width),
+            height: edge(size.height),
             regions: Vec::new(),
             rects: Vec::new(),
             strips: Vec::new(),
-            strip_setup: 0,
-            refused: None,
+            strip_setup,
+            pad: u8::try_from(pad).unwrap_or(u8::MAX),
             full: false,
+            refused: None,
         }
     }
 
     fn full(size: Size) -> Self {
-        let image = Rectangle::new(Point::zero(), size);
-        let mut plan = Self::empty(size);
-        let _ = plan.regions.push((Region::Rect(image), image));
+        let image = Area::new(0, 0, size.width, size.height);
+        let mut plan = Self::empty(size, 0, 0);
+        let _ = plan.regions.push(Entry {
+            region: Region::Rect,
+            bbox: image,
+        });
         let _ = plan.rects.push(image);
         let _ = plan.strips.push(image);
         plan.full = true;
@@ -662,21 +736,65 @@ impl Changes {
     }
 
     fn refusal(size: Size, why: FrameError) -> Self {
-        let mut plan = Self::empty(size);
+        let mut plan = Self::empty(size, 0, 0);
         plan.refused = Some(why);
         plan
     }
 
-    /// Adds a region with its bounding box (none if it reaches no pixel); `false` if it
-    /// cannot be planned (not a bounded ellipse, or one too many).
-    fn push(&mut self, region: Option<Region>) -> bool {
-        let Some(region) = region else {
+    /// The image's width and the silhouettes' widening, as a row's cut takes them.
+    fn row_consts(&self) -> (u32, u32) {
+        (u32::from(self.width), u32::from(self.pad))
+    }
+
+    /// Adds a silhouette (rule steps 2 and 3); `false` if it cannot be planned (not a
+    /// bounded ellipse, or one region too many).
+    fn push_silhouette(&mut self, sil: Silhouette) -> bool {
+        if sil.is_all() {
             return false;
+        }
+        let (height, pad) = (u32::from(self.height), u32::from(self.pad));
+        let (a, b) = sil.rows(height);
+        let rows = if pad == 0 || a >= b {
+            (a, b)
+        } else {
+            (a.saturating_sub(pad + 1), b.saturating_add(pad + 1).min(height))
         };
-        let (j0, j1) = region.rows(self.size.height);
+        self.push(Region::Ellipse(sil), rows)
+    }
+
+    /// Adds the integer kernel's cut of a sphere's rows `rows`; `false` if one region
+    /// too many.
+    fn push_cut(&mut self, rows: (u32, u32), cut: IntCut) -> bool {
+        let height = u32::from(self.height);
+        let (j0, j1) = (rows.0.min(height), rows.1.min(height));
+        if cut == IntCut::All {
+            // Every column of its rows.
+            return j0 >= j1 || self.push_area(Area::new(0, j0, u32::from(self.width), j1));
+        }
+        self.push(Region::Int(cut), (j0, j1))
+    }
+
+    /// Adds a rectangle of the image (rule step 4); `false` if one region too many.
+    fn push_rect(&mut self, r: Rectangle) -> bool {
+        r.is_zero_sized() || self.push_area(Area::of(r))
+    }
+
+    fn push_area(&mut self, bbox: Area) -> bool {
+        self.regions
+            .push(Entry {
+                region: Region::Rect,
+                bbox,
+            })
+            .is_ok()
+    }
+
+    /// Adds a region whose runs lie in rows `j0..j1`, with its bounding box (none if it
+    /// has no run: off the image); `false` if one region too many.
+    fn push(&mut self, region: Region, (j0, j1): (u32, u32)) -> bool {
+        let (width, pad) = self.row_consts();
         let (mut x0, mut x1, mut y0, mut y1) = (u32::MAX, 0, u32::MAX, 0);
         for j in j0..j1 {
-            if let Some((lo, hi)) = region.span(j, self.size.width) {
+            if let Some((lo, hi)) = region.cut(j, width, pad) {
                 x0 = x0.min(lo);
                 x1 = x1.max(hi);
                 y0 = y0.min(j);
@@ -684,18 +802,18 @@ impl Changes {
             }
         }
         if x0 >= x1 {
-            return true; // off the image
+            return true;
         }
-        let bbox = Rectangle::new(Point::new(x0 as i32, y0 as i32), Size::new(x1 - x0, y1 - y0));
-        self.regions.push((region, bbox)).is_ok()
+        let bbox = Area::new(x0, y0, x1, y1);
+        self.regions.push(Entry { region, bbox }).is_ok()
     }
 
     /// The traced rectangles: the regions' boxes, those that overlap merged into one,
-    /// until none does.
+    /// until none does; then the strips.
     fn merge(&mut self) {
         self.rects.clear();
-        for &(_, b) in &self.regions {
-            let _ = self.rects.push(b);
+        for e in &self.regions {
+            let _ = self.rects.push(e.bbox);
         }
         let mut merged = true;
         while merged {
@@ -705,9 +823,9 @@ impl Changes {
                     let (Some(&ra), Some(&rb)) = (self.rects.get(a), self.rects.get(b)) else {
                         continue;
                     };
-                    if !ra.intersection(&rb).is_zero_sized() {
+                    if ra.meets(rb) {
                         if let Some(slot) = self.rects.get_mut(a) {
-                            *slot = bounding(ra, rb);
+                            *slot = ra.bounding(rb);
                         }
                         self.rects.swap_remove(b);
                         merged = true;
@@ -731,21 +849,19 @@ impl Changes {
 
     /// Cuts rectangle `r` into strips of rows, each as wide as its rows' runs reach: a
     /// strip grows a row while the pixels it would trace outside the runs stay within
-    /// the frame kind's [`STRIP_SETUP`] (the cost of the frame set-up a new strip pays); a row without a
-    /// run ends it. `false` if the strips do not fit.
+    /// the frame kind's [`STRIP_SETUP`] (the cost of the frame set-up a new strip pays);
+    /// a row without a run ends it. `false` if the strips do not fit.
     fn cut_strips(&mut self, r: usize) -> bool {
         let Some(&rect) = self.rects.get(r) else {
             return true;
         };
-        let (x0, x1) = (rect.top_left.x as u32, rect.top_left.x as u32 + rect.size.width);
-        let (y0, y1) = (rect.top_left.y as u32, rect.top_left.y as u32 + rect.size.height);
+        let ((x0, x1), (y0, y1)) = (rect.cols(), rect.rows());
         // The open strip: first row, columns, and the pixels of its rows' runs' extents.
         let mut open: Option<(u32, u32, u32, u32)> = None;
         let mut ok = true;
         let mut close =
-            |strips: &mut Vec<Rectangle, MAX_STRIPS>, (top, lo, hi, _): (u32, u32, u32, u32), end: u32| {
-                let strip = Rectangle::new(Point::new(lo as i32, top as i32), Size::new(hi - lo, end - top));
-                ok &= strips.push(strip).is_ok();
+            |strips: &mut Vec<Area, MAX_STRIPS, u8>, (top, lo, hi, _): (u32, u32, u32, u32), end: u32| {
+                ok &= strips.push(Area::new(lo, top, hi, end)).is_ok();
             };
         for j in y0..y1 {
             // This row's runs within the rectangle (runs of other rectangles lie outside it).
@@ -800,13 +916,13 @@ impl Changes {
 
     /// The rectangles traced (image coordinates), disjoint.
     pub fn rectangles(&self) -> impl Iterator<Item = Rectangle> + '_ {
-        self.strips.iter().copied()
+        self.strips.iter().map(|s| s.rect())
     }
 
     /// Pixels traced: the rectangles' area.
     #[must_use]
     pub fn traced(&self) -> u32 {
-        self.strips.iter().map(|r| r.size.width * r.size.height).sum()
+        self.strips.iter().map(|s| s.pixels()).sum()
     }
 
     /// The changed runs `[lo, hi)` of image row `j`, left to right, disjoint, runs of
@@ -814,22 +930,18 @@ impl Changes {
     /// row.
     #[must_use]
     pub fn runs(&self, j: u32) -> Runs {
-        let mut runs = Runs {
-            runs: [(0, 0); MAX_REGIONS],
-            len: 0,
-            next: 0,
-        };
+        let (width, pad) = self.row_consts();
+        let mut runs = Runs::new();
         for rect in &self.rects {
-            let (y0, y1) = (rect.top_left.y as u32, rect.top_left.y as u32 + rect.size.height);
-            if !(y0 <= j && j < y1) {
+            if !rect.has_row(j) {
                 continue;
             }
             let from = runs.len;
-            for (region, bbox) in &self.regions {
-                if bbox.intersection(rect).is_zero_sized() {
+            for e in &self.regions {
+                if !e.bbox.meets(*rect) {
                     continue;
                 }
-                if let Some(span) = region.span(j, self.size.width) {
+                if let Some(span) = e.span(j, width, pad) {
                     runs.insert(span, from, MERGE_GAP);
                 }
             }
@@ -842,7 +954,7 @@ impl Changes {
     #[must_use]
     pub fn sent(&self) -> (u32, u32) {
         let (mut pixels, mut windows) = (0, 0);
-        for j in 0..self.size.height {
+        for j in 0..u32::from(self.height) {
             for (lo, hi) in self.runs(j) {
                 pixels += hi - lo;
                 windows += 1;
@@ -871,8 +983,8 @@ impl Changes {
         C: PixelColor + From<Rgb888>,
     {
         let (band, mut sink) = render.band(rows, buf)?;
-        for rect in &self.strips {
-            let clip = rect.intersection(&band);
+        for strip in &self.strips {
+            let clip = strip.rect().intersection(&band);
             if clip.is_zero_sized() {
                 continue;
             }
@@ -905,7 +1017,8 @@ impl Changes {
         }
         let offset = render.offset();
         let bbox = target.bounding_box();
-        for rect in &self.strips {
+        for strip in &self.strips {
+            let rect = strip.rect();
             let clip = Rectangle::new(rect.top_left + offset, rect.size).intersection(&bbox);
             if clip.is_zero_sized() {
                 continue;
@@ -929,18 +1042,27 @@ impl Changes {
 /// The changed runs of one row ([`Changes::runs`]).
 #[derive(Clone, Debug)]
 pub struct Runs {
-    runs: [(u32, u32); MAX_REGIONS],
+    runs: [(u16, u16); MAX_REGIONS],
     len: usize,
     next: usize,
 }
 
 impl Runs {
+    fn new() -> Self {
+        Self {
+            runs: [(0, 0); MAX_REGIONS],
+            len: 0,
+            next: 0,
+        }
+    }
+
     /// Adds `span` to the runs from index `from` on (one rectangle's), merging it with
     /// any it overlaps or comes within `gap` of.
     fn insert(&mut self, (mut lo, mut hi): (u32, u32), from: usize, gap: u32) {
         let mut k = from;
         while k < self.len {
             let Some(&(a, b)) = self.runs.get(k) else { break };
+            let (a, b) = (u32::from(a), u32::from(b));
             if lo <= b + gap && a <= hi + gap {
                 lo = lo.min(a);
                 hi = hi.max(b);
@@ -956,7 +1078,7 @@ impl Runs {
             k += 1;
         }
         if let Some(slot) = self.runs.get_mut(self.len) {
-            *slot = (lo, hi);
+            *slot = (edge(lo), edge(hi));
             self.len += 1;
         }
     }
@@ -971,13 +1093,13 @@ impl Runs {
 impl Iterator for Runs {
     type Item = (u32, u32);
     fn next(&mut self) -> Option<(u32, u32)> {
-        let run = self
+        let (lo, hi) = self
             .runs
             .get(self.next)
             .copied()
             .filter(|_| self.next < self.len)?;
         self.next += 1;
-        Some(run)
+        Some((u32::from(lo), u32::from(hi)))
     }
 }
 

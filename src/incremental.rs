@@ -119,7 +119,7 @@ pub struct FrameStats {
 /// settings of the last frame drawn. Its size is the scene's
 /// (`size_of::<Scene<N, L, P, D>>()`: 32 bytes a sphere of capacity `N`, 24 a light, 56
 /// a plane, and 40) and 128 bytes more; it holds no pixel. While it draws, its plan of
-/// the frame ([`Changes`], 820 bytes on a 32-bit target) is on the stack beside the
+/// the frame ([`Changes`], 868 bytes on a 32-bit target) is on the stack beside the
 /// render's own.
 ///
 /// ```
@@ -660,11 +660,16 @@ impl Region {
     }
 }
 
-/// A region and its bounding box (the rows and columns of its runs).
+/// A region, its bounding box (the rows and columns of its runs) and its rectangle.
 #[derive(Clone, Copy, Debug)]
 struct Entry {
     region: Region,
     bbox: Area,
+    /// The pixels of `bbox` outside the region's runs, if every row of `bbox` has a run
+    /// (else, or if more, `u16::MAX`): what a strip of `bbox` alone traces outside them.
+    waste: u16,
+    /// The index in `Changes::rects` of the rectangle holding `bbox`.
+    rect: u8,
 }
 
 impl Entry {
@@ -682,7 +687,7 @@ impl Entry {
 }
 
 /// The regions of one frame, their rectangles, and what tracing them costs. It takes
-/// 820 bytes on a 32-bit target.
+/// 868 bytes on a 32-bit target.
 #[derive(Clone, Debug)]
 pub struct Changes {
     width: u16,
@@ -705,7 +710,7 @@ pub struct Changes {
 // The plan sits on the stack beside the render's own while a frame draws (the size the
 // `Incremental` and `Changes` docs state).
 #[cfg(target_pointer_width = "32")]
-const _: () = assert!(size_of::<Changes>() <= 820);
+const _: () = assert!(size_of::<Changes>() <= 868);
 
 impl Changes {
     fn empty(size: Size, strip_setup: u32, pad: u32) -> Self {
@@ -728,6 +733,8 @@ impl Changes {
         let _ = plan.regions.push(Entry {
             region: Region::Rect,
             bbox: image,
+            waste: 0,
+            rect: 0,
         });
         let _ = plan.rects.push(image);
         let _ = plan.strips.push(image);
@@ -784,6 +791,8 @@ impl Changes {
             .push(Entry {
                 region: Region::Rect,
                 bbox,
+                waste: 0,
+                rect: 0,
             })
             .is_ok()
     }
@@ -793,23 +802,39 @@ impl Changes {
     fn push(&mut self, region: Region, (j0, j1): (u32, u32)) -> bool {
         let (width, pad) = self.row_consts();
         let (mut x0, mut x1, mut y0, mut y1) = (u32::MAX, 0, u32::MAX, 0);
+        let (mut covered, mut gap) = (0, false);
         for j in j0..j1 {
             if let Some((lo, hi)) = region.cut(j, width, pad) {
+                // A row without a run lies between this one and the last with one.
+                gap |= y0 != u32::MAX && y1 != j;
                 x0 = x0.min(lo);
                 x1 = x1.max(hi);
                 y0 = y0.min(j);
                 y1 = j + 1;
+                covered += hi - lo;
             }
         }
         if x0 >= x1 {
             return true;
         }
         let bbox = Area::new(x0, y0, x1, y1);
-        self.regions.push(Entry { region, bbox }).is_ok()
+        let waste = if gap {
+            u16::MAX
+        } else {
+            u16::try_from(bbox.pixels() - covered).unwrap_or(u16::MAX)
+        };
+        self.regions
+            .push(Entry {
+                region,
+                bbox,
+                waste,
+                rect: 0,
+            })
+            .is_ok()
     }
 
     /// The traced rectangles: the regions' boxes, those that overlap merged into one,
-    /// until none does; then the strips.
+    /// until none does; then each region's rectangle, and the strips.
     fn merge(&mut self) {
         self.rects.clear();
         for e in &self.regions {
@@ -834,6 +859,10 @@ impl Changes {
                 }
             }
         }
+        // The rectangles are disjoint: a box meets only the one holding it.
+        for e in &mut self.regions {
+            e.rect = self.rects.iter().position(|r| r.meets(e.bbox)).unwrap_or(0) as u8;
+        }
         self.strips.clear();
         for r in 0..self.rects.len() {
             if !self.cut_strips(r) {
@@ -855,7 +884,25 @@ impl Changes {
         let Some(&rect) = self.rects.get(r) else {
             return true;
         };
-        let ((x0, x1), (y0, y1)) = (rect.cols(), rect.rows());
+        let group = r as u8;
+        // The whole rectangle is one strip if it traces at most `STRIP_SETUP` pixels
+        // outside its runs: a strip's pixels outside its runs never shrink as it grows a
+        // row, so the rule below never ends it early. Bounded from the regions' boxes,
+        // without a row's runs: the rectangle's rows are its boxes' rows, joined (boxes
+        // that share no row never merge), so if each box has a run in every row, so has
+        // the rectangle; and its runs hold any one region's.
+        let outside = self
+            .regions
+            .iter()
+            .filter(|e| e.rect == group)
+            .try_fold(u32::MAX, |least, e| {
+                (e.waste != u16::MAX).then(|| least.min(rect.pixels() - e.bbox.pixels() + u32::from(e.waste)))
+            });
+        if outside.is_some_and(|w| w <= self.strip_setup) {
+            return self.strips.push(rect).is_ok();
+        }
+        let (width, pad) = self.row_consts();
+        let (y0, y1) = rect.rows();
         // The open strip: first row, columns, and the pixels of its rows' runs' extents.
         let mut open: Option<(u32, u32, u32, u32)> = None;
         let mut ok = true;
@@ -864,10 +911,13 @@ impl Changes {
                 ok &= strips.push(Area::new(lo, top, hi, end)).is_ok();
             };
         for j in y0..y1 {
-            // This row's runs within the rectangle (runs of other rectangles lie outside it).
+            // This row's runs' extent: the rectangle's regions' (merging runs closer than
+            // `MERGE_GAP` fills gaps inside it only).
             let extent = self
-                .runs(j)
-                .filter(|&(lo, hi)| lo < x1 && hi > x0)
+                .regions
+                .iter()
+                .filter(|e| e.rect == group)
+                .filter_map(|e| e.span(j, width, pad))
                 .fold(None, |e: Option<(u32, u32)>, (lo, hi)| {
                     Some(e.map_or((lo, hi), |(a, b)| (a.min(lo), b.max(hi))))
                 });
@@ -894,6 +944,24 @@ impl Changes {
             close(&mut self.strips, strip, y1);
         }
         ok
+    }
+
+    /// Adds to `runs` the runs in row `j` of rectangle `g`'s regions that can reach
+    /// columns `x0..x1`, merged. A gap is filled only between runs at most
+    /// [`MERGE_GAP`] apart, so within `x0..x1` the runs of the regions reaching
+    /// `x0 − MERGE_GAP..x1 + MERGE_GAP` are those of all of them.
+    fn add_runs(&self, runs: &mut Runs, g: u8, j: u32, (x0, x1): (u32, u32)) {
+        let (width, pad) = self.row_consts();
+        let from = runs.len;
+        for e in &self.regions {
+            let (lo, hi) = e.bbox.cols();
+            if e.rect != g || lo >= x1 + MERGE_GAP || hi + MERGE_GAP <= x0 {
+                continue;
+            }
+            if let Some(span) = e.span(j, width, pad) {
+                runs.insert(span, from, MERGE_GAP);
+            }
+        }
     }
 
     /// The whole frame is drawn.
@@ -930,20 +998,10 @@ impl Changes {
     /// row.
     #[must_use]
     pub fn runs(&self, j: u32) -> Runs {
-        let (width, pad) = self.row_consts();
         let mut runs = Runs::new();
-        for rect in &self.rects {
-            if !rect.has_row(j) {
-                continue;
-            }
-            let from = runs.len;
-            for e in &self.regions {
-                if !e.bbox.meets(*rect) {
-                    continue;
-                }
-                if let Some(span) = e.span(j, width, pad) {
-                    runs.insert(span, from, MERGE_GAP);
-                }
+        for (g, rect) in self.rects.iter().enumerate() {
+            if rect.has_row(j) {
+                self.add_runs(&mut runs, g as u8, j, rect.cols());
             }
         }
         runs.sort();
@@ -1028,6 +1086,7 @@ impl Changes {
             let mut sink = RunSink {
                 target: &mut *target,
                 changes: self,
+                rect: self.rects.iter().position(|r| r.meets(*strip)).unwrap_or(0) as u8,
                 offset,
                 stats: &mut stats,
                 full: self.full,
@@ -1103,11 +1162,13 @@ impl Iterator for Runs {
     }
 }
 
-/// Rows into a `DrawTarget`, only their changed runs, each run its own
+/// Rows of one strip into a `DrawTarget`, only their changed runs, each run its own
 /// `fill_contiguous`.
 struct RunSink<'t, 'c, 's, Tg, C> {
     target: &'t mut Tg,
     changes: &'c Changes,
+    /// The rectangle the strip was cut from: its regions' runs are the strip's.
+    rect: u8,
     offset: Point,
     stats: &'s mut FrameStats,
     full: bool,
@@ -1137,8 +1198,11 @@ impl<Tg: DrawTarget<Color = C>, C: PixelColor + From<Rgb888>> RowSink for RunSin
         let j = (area.top_left.y - self.offset.y) as u32;
         let x0 = (area.top_left.x - self.offset.x) as u32;
         let x1 = x0 + area.size.width;
+        let mut runs = Runs::new();
+        self.changes.add_runs(&mut runs, self.rect, j, (x0, x1));
+        runs.sort();
         let mut at = x0;
-        for (lo, hi) in self.changes.runs(j) {
+        for (lo, hi) in runs {
             let (lo, hi) = (lo.max(x0), hi.min(x1));
             if lo >= hi {
                 continue;

@@ -84,15 +84,15 @@ pub const MERGE_GAP: u32 = 5;
 
 /// A traced rectangle is cut into strips of rows that follow the changed runs; a strip
 /// grows while it traces at most this many pixels outside the runs: roughly what a new
-/// strip costs, in pixels of the frame's kind, `[f32 Lab #1, f32 with features, integer
-/// kernel]`. A Lab #1 or integer strip is a render of its own and pays the frame's
-/// set-up (the integer kernel's in software `f64`: estimates); the strips of a frame
-/// with features are traced as one frame, its set-up paid once, so a strip costs only
-/// its rows' start (on the Cortex-M4F, `bounce`'s worst frame: 5,158 pixels in 20
-/// strips, 3.50 M instructions, against 5,626 pixels in 7 strips, 4.10 M, when each
-/// strip paid the set-up and the constant was 128: `lab/firmware/examples/
-/// qemu_animation.rs`). Tuning constants: any values draw the same pixels.
-pub const STRIP_SETUP: [u32; 3] = [1024, 16, 2048];
+/// strip costs, in traced pixels, `[one ray a pixel or a grid, adaptive sampling]`. The
+/// strips of a frame are traced as one frame, its set-up (scale, silhouettes, shadow
+/// regions, the integer kernel's rule) paid once, so a strip costs only its rows'
+/// start; adaptive sampling's rows hold their clip, so there each strip is a frame of
+/// its own and pays the set-up. On the Cortex-M4F `bounce`'s worst frame traces 5,158
+/// pixels in 20 strips for 3.50 M instructions, where strips that each paid the set-up,
+/// cut at 128, traced 5,626 in 7 for 4.10 M (`lab/firmware/examples/qemu_animation.rs`).
+/// Tuning constants: any values draw the same pixels.
+pub const STRIP_SETUP: [u32; 2] = [16, 512];
 
 /// At most this many strips a frame; more trace each rectangle whole.
 const MAX_STRIPS: usize = 48;
@@ -124,7 +124,7 @@ pub struct FrameStats {
 /// settings of the last frame drawn. Its size is the scene's
 /// (`size_of::<Scene<N, L, P, D>>()`: 32 bytes a sphere of capacity `N`, 24 a light, 56
 /// a plane, and 40) and 128 bytes more; it holds no pixel. While it draws, its plan of
-/// the frame ([`Changes`], 1,704 bytes on a 32-bit target) is on the stack beside the
+/// the frame ([`Changes`], 996 bytes on a 32-bit target) is on the stack beside the
 /// render's own.
 ///
 /// ```
@@ -331,20 +331,11 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             Ok(p) => p,
             Err(why) => return Changes::refusal(size, why),
         };
-        let full = Changes::full(size);
-        let Some(shown) = &self.shown else {
-            return full;
+        let full = || Changes::full(size);
+        let shown = match &self.shown {
+            Some(shown) if shown.same_frame(render, target, offset) => shown,
+            _ => return full(),
         };
-        if !(same_params(&shown.params, camera.params())
-            && shown.method == render.method()
-            && shown.sampling == render.sampling()
-            && same_options(render.options(), shown.options)
-            && shown.offset == offset
-            && shown.target == target
-            && same_frame_wide(&shown.scene, scene))
-        {
-            return full;
-        }
         let old = dispatch(
             render.method(),
             Probe {
@@ -355,15 +346,12 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         );
         match old {
             Ok((s, c, _, _)) if s.0.to_bits() == scale.0.to_bits() && c == culled => {}
-            _ => return full,
+            _ => return full(),
         }
-        let changed = |k: usize| match (shown.scene.spheres().get(k), scene.spheres().get(k)) {
-            (Some(a), Some(b)) => !same_sphere(a, b),
-            _ => true,
-        };
+        let changed = |k: usize| shown.changed(scene, k);
         let any_changed = (0..scene.spheres().len()).any(changed);
         if any_changed && features && !lit::same_ties(&shown.scene, scene, camera.eye()) {
-            return full;
+            return full();
         }
         let pad = match render.sampling() {
             Sampling::Center => 0,
@@ -376,14 +364,19 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             && ((shadows && scene.planes().len() > 1)
                 || (mirrors && scene.planes().iter().any(|p| p.material.reflect != 0.0)))
         {
-            return full;
+            return full();
         }
         let cone = if culled {
             ViewCone::new(camera, step_err)
         } else {
             None
         };
-        let mut plan = Changes::empty(size);
+        let kind = if matches!(render.sampling(), Sampling::Adaptive(_)) {
+            STRIP_SETUP[1]
+        } else {
+            STRIP_SETUP[0]
+        };
+        let mut plan = Changes::empty(size, kind, pad);
         let frame = Sil {
             camera,
             scale,
@@ -393,7 +386,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             span_culling: render.options().span_culling,
         };
         let mut ok = true;
-        let add_sphere = |plan: &mut Changes, s: &Sphere| plan.push(Region::silhouette(frame.of(s), pad));
+        let add_sphere = |plan: &mut Changes, s: &Sphere| plan.push_silhouette(frame.of(s));
         for (k, new_s) in scene.spheres().iter().enumerate() {
             if !changed(k) {
                 continue;
@@ -404,7 +397,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
                 if shadows {
                     for s in [old_s, new_s] {
                         lit::shadow_regions(scene, s, camera, (scale, step_err), |sil| {
-                            ok &= plan.push(Region::silhouette(sil, pad));
+                            ok &= plan.push_silhouette(sil);
                         });
                     }
                 }
@@ -427,12 +420,11 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             }
         }
         if let Some(stale) = self.stale {
-            ok &= plan.push(Some(Region::Rect(stale)));
+            ok &= plan.push_rect(stale);
         }
         if !ok {
-            return full;
+            return full();
         }
-        plan.strip_setup = if features { STRIP_SETUP[1] } else { STRIP_SETUP[0] };
         plan.merge();
         plan
     }
@@ -453,44 +445,61 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
     ) -> Option<Changes> {
         let (camera, scene, options) = (render.camera(), render.scene(), render.options());
         let size = camera.size();
-        let full = Some(Changes::full(size));
-        let mut plan = Changes::empty(size);
+        let shown = match &self.shown {
+            Some(shown) if shown.same_frame(render, target, offset) => shown,
+            // The whole frame, if the integer kernel's rule takes it.
+            _ => {
+                return crate::integer::regions::<N>(scene.spheres(), camera, options, |_| false, |_, _| {})
+                    .map(|_| Changes::full(size));
+            }
+        };
+        let changed = |k: usize| shown.changed(scene, k);
+        let mut plan = Changes::empty(size, STRIP_SETUP[0], 0);
         let mut ok = true;
-        let new_key = crate::integer::regions::<N>(scene.spheres(), camera, options, |_| false, |_, _| {});
-        let Some(shown) = &self.shown else {
-            return new_key.and(full);
-        };
-        if !(same_params(&shown.params, camera.params())
-            && shown.method == render.method()
-            && shown.sampling == render.sampling()
-            && same_options(options, shown.options)
-            && shown.offset == offset
-            && shown.target == target
-            && same_frame_wide(&shown.scene, scene))
-        {
-            return new_key.and(full);
-        }
-        let changed = |k: usize| match (shown.scene.spheres().get(k), scene.spheres().get(k)) {
-            (Some(a), Some(b)) => !same_sphere(a, b),
-            _ => true,
-        };
-        let mut add = |rows: (u32, u32), cut| ok &= plan.push(Some(Region::Int { rows, cut }));
+        let mut add = |rows: (u32, u32), cut| ok &= plan.push_cut(rows, cut);
+        // Each frame's quantisation, found with its changed spheres' cuts: the cuts are
+        // the plan only if the two quantisations are equal.
+        let new_key = crate::integer::regions::<N>(scene.spheres(), camera, options, changed, &mut add);
         let old_key = crate::integer::regions::<N>(shown.scene.spheres(), camera, options, changed, &mut add);
         match (old_key, new_key) {
             (None, None) => return None,
             (Some(a), Some(b)) if a == b => {}
-            _ => return full,
+            _ => return Some(Changes::full(size)),
         }
-        let _ = crate::integer::regions::<N>(scene.spheres(), camera, options, changed, &mut add);
         if let Some(stale) = self.stale {
-            ok &= plan.push(Some(Region::Rect(stale)));
+            ok &= plan.push_rect(stale);
         }
         if !ok {
-            return full;
+            return Some(Changes::full(size));
         }
-        plan.strip_setup = STRIP_SETUP[2];
         plan.merge();
         Some(plan)
+    }
+}
+
+impl<const N: usize, const L: usize, const P: usize, const D: usize> Shown<N, L, P, D> {
+    /// Whether `render`, drawn onto `target` (its bounding box) at `offset`, keeps this
+    /// frame's frame-wide state (rule step 1) as far as the inputs say: the camera, the
+    /// method, sampling, options, offset and target, and the scene's frame-wide numbers.
+    /// What the method derives from them (the frame's scale, the integer kernel's
+    /// quantisation) each rule compares itself.
+    fn same_frame<C>(&self, render: &Render<'_, N, C, L, P, D>, target: Rectangle, offset: Point) -> bool {
+        same_params(&self.params, render.camera().params())
+            && self.method == render.method()
+            && self.sampling == render.sampling()
+            && same_options(render.options(), self.options)
+            && self.offset == offset
+            && self.target == target
+            && same_frame_wide(&self.scene, render.scene())
+    }
+
+    /// Whether sphere `k` of `scene` differs from this frame's bit for bit (rule step
+    /// 2); a sphere only one of them has differs.
+    fn changed(&self, scene: &Scene<N, L, P, D>, k: usize) -> bool {
+        match (self.scene.spheres().get(k), scene.spheres().get(k)) {
+            (Some(a), Some(b)) => !same_sphere(a, b),
+            _ => true,
+        }
     }
 }
 
@@ -549,51 +558,111 @@ impl Sil<'_> {
     }
 }
 
-/// One region of the image that can have changed.
+// Every edge of a rectangle of the image fits an `Area`'s `u16`.
+const _: () = assert!(crate::math::limits::MAX_RESOLUTION <= u16::MAX as u32);
+
+/// A rectangle of the image, `[x0, x1) × [y0, y1)` in pixels. An image is at most
+/// `MAX_RESOLUTION` pixels each way, so each edge is a `u16`: half a `Rectangle`, for
+/// the plan's rectangles and strips.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Area {
+    x0: u16,
+    y0: u16,
+    x1: u16,
+    y1: u16,
+}
+
+impl Area {
+    /// From edges of the image (each at most `MAX_RESOLUTION`).
+    fn new(x0: u32, y0: u32, x1: u32, y1: u32) -> Self {
+        Self {
+            x0: edge(x0),
+            y0: edge(y0),
+            x1: edge(x1),
+            y1: edge(y1),
+        }
+    }
+
+    /// A rectangle of the image.
+    fn of(r: Rectangle) -> Self {
+        let (x0, y0) = (r.top_left.x.max(0) as u32, r.top_left.y.max(0) as u32);
+        Self::new(x0, y0, x0 + r.size.width, y0 + r.size.height)
+    }
+
+    fn rect(self) -> Rectangle {
+        let ((x0, x1), (y0, y1)) = (self.cols(), self.rows());
+        Rectangle::new(
+            Point::new(x0 as i32, y0 as i32),
+            Size::new(x1.saturating_sub(x0), y1.saturating_sub(y0)),
+        )
+    }
+
+    fn cols(self) -> (u32, u32) {
+        (u32::from(self.x0), u32::from(self.x1))
+    }
+
+    fn rows(self) -> (u32, u32) {
+        (u32::from(self.y0), u32::from(self.y1))
+    }
+
+    fn has_row(self, j: u32) -> bool {
+        u32::from(self.y0) <= j && j < u32::from(self.y1)
+    }
+
+    fn pixels(self) -> u32 {
+        let ((x0, x1), (y0, y1)) = (self.cols(), self.rows());
+        x1.saturating_sub(x0) * y1.saturating_sub(y0)
+    }
+
+    /// Whether the two share a pixel.
+    fn meets(self, o: Area) -> bool {
+        self.x0 < o.x1 && o.x0 < self.x1 && self.y0 < o.y1 && o.y0 < self.y1
+    }
+
+    /// The smallest rectangle holding both.
+    fn bounding(self, o: Area) -> Area {
+        Area {
+            x0: self.x0.min(o.x0),
+            y0: self.y0.min(o.y0),
+            x1: self.x1.max(o.x1),
+            y1: self.y1.max(o.y1),
+        }
+    }
+}
+
+/// An edge or size of the image as a `u16` (it is at most `MAX_RESOLUTION`).
+fn edge(v: u32) -> u16 {
+    u16::try_from(v).unwrap_or(u16::MAX)
+}
+
+/// One region of the image that can have changed; its rows and columns are its entry's
+/// bounding box.
 #[derive(Clone, Copy, Debug)]
 enum Region {
-    /// A silhouette widened by `pad` pixels each way, its reach constants, and the rows
-    /// it covers.
-    Ellipse {
-        sil: Silhouette,
-        reach: (f32, f32),
-        pad: u32,
-    },
-    /// A sphere's rows and the integer kernel's cut of them.
-    Int { rows: (u32, u32), cut: IntCut },
-    /// A rectangle of the image.
-    Rect(Rectangle),
+    /// A silhouette, widened by the plan's `pad` pixels each way.
+    Ellipse(Silhouette),
+    /// A sphere's cut in the integer kernel (one that culls nothing is a `Rect`).
+    Int(IntCut),
+    /// Its bounding box.
+    Rect,
 }
 
 impl Region {
-    fn silhouette(sil: Silhouette, pad: u32) -> Option<Self> {
-        if sil.is_all() {
-            return None;
-        }
-        Some(Region::Ellipse {
-            sil,
-            reach: sil.reach_consts(),
-            pad,
-        })
-    }
-
-    /// Its columns `[lo, hi)` in row `j` of an image `width` wide.
-    fn span(&self, j: u32, width: u32) -> Option<(u32, u32)> {
+    /// Its columns `[lo, hi)` in row `j` of an image `width` wide; for `Int` a row of
+    /// its sphere's rows. `None` for `Rect` (its box is its run).
+    fn cut(&self, j: u32, width: u32, pad: u32) -> Option<(u32, u32)> {
         match *self {
-            Region::Rect(r) => {
-                let (y0, y1) = (r.top_left.y as u32, r.top_left.y as u32 + r.size.height);
-                (y0 <= j && j < y1).then_some((r.top_left.x as u32, r.top_left.x as u32 + r.size.width))
-            }
-            Region::Int { rows, cut } => (rows.0 <= j && j < rows.1)
-                .then(|| cut.row_span(j, width))
-                .flatten(),
-            Region::Ellipse { sil, pad: 0, .. } => sil.row_span(j, 0, width),
-            Region::Ellipse { sil, reach, pad } => {
+            Region::Rect => None,
+            Region::Int(cut) => cut.row_span(j, width),
+            Region::Ellipse(sil) if pad == 0 => sil.row_span(j, 0, width),
+            Region::Ellipse(sil) => {
                 // A pixel's rays (and, with `pad`, its neighbours') lie within
                 // `pad + ½` of its centre: the silhouette's reach over those rows,
-                // widened as much in columns.
+                // widened as much in columns. The reach's two roots are taken per row:
+                // only a frame of several rays a pixel widens, and there they are a few
+                // of the row's rays.
                 let h = pad as f32 + 0.5;
-                let (lo, hi) = sil.band_reach(j, h, reach)?;
+                let (lo, hi) = sil.band_reach(j, h, sil.reach_consts())?;
                 let lo = libm::floorf(lo - h).max(0.0).min(width as f32);
                 let hi = (libm::ceilf(hi + h) + 1.0).max(0.0).min(width as f32);
                 // NaN clamps to a bound: the whole row.
@@ -602,62 +671,84 @@ impl Region {
             }
         }
     }
+}
 
-    /// The rows it can reach in an image `height` tall.
-    fn rows(&self, height: u32) -> (u32, u32) {
-        match *self {
-            Region::Rect(r) => (r.top_left.y as u32, r.top_left.y as u32 + r.size.height),
-            Region::Int { rows, cut } => {
-                if cut == IntCut::All {
-                    (0, height)
-                } else {
-                    (rows.0.min(height), rows.1.min(height))
-                }
-            }
-            Region::Ellipse { sil, pad, .. } => {
-                let (a, b) = sil.rows(height);
-                if pad == 0 || a >= b {
-                    (a, b)
-                } else {
-                    (a.saturating_sub(pad + 1), b.saturating_add(pad + 1).min(height))
-                }
-            }
+/// A region, its bounding box (the rows and columns of its runs) and its rectangle.
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    region: Region,
+    bbox: Area,
+    /// The pixels of `bbox` outside the region's runs, if every row of `bbox` has a run
+    /// (else, or if more, `u16::MAX`): what a strip of `bbox` alone traces outside them.
+    waste: u16,
+    /// The index in `Changes::rects` of the rectangle holding `bbox`.
+    rect: u8,
+}
+
+impl Entry {
+    /// Its run `[lo, hi)` in row `j` of an image `width` wide.
+    #[inline]
+    fn span(&self, j: u32, width: u32, pad: u32) -> Option<(u32, u32)> {
+        if !self.bbox.has_row(j) {
+            return None;
+        }
+        match self.region {
+            Region::Rect => Some(self.bbox.cols()),
+            region => region.cut(j, width, pad),
         }
     }
 }
 
-/// The regions of one frame, their rectangles, and what tracing them costs.
+/// The regions of one frame, their rectangles, and what tracing them costs. It takes
+/// 996 bytes on a 32-bit target.
 #[derive(Clone, Debug)]
 pub struct Changes {
-    size: Size,
-    regions: Vec<(Region, Rectangle), MAX_REGIONS>,
-    rects: Vec<Rectangle, MAX_REGIONS>,
+    width: u16,
+    height: u16,
+    /// The regions. A row's runs are merged only with runs of the same rectangle.
+    regions: Vec<Entry, MAX_REGIONS, u8>,
+    /// The regions' boxes, those that overlap merged into one, until none does.
+    rects: Vec<Area, MAX_REGIONS, u8>,
     /// The rectangles the render is clipped to: each of `rects` cut into strips of rows
     /// that follow the runs' extent.
-    strips: Vec<Rectangle, MAX_STRIPS>,
+    strips: Vec<Area, MAX_STRIPS, u8>,
     /// The frame kind's [`STRIP_SETUP`].
     strip_setup: u32,
-    refused: Option<FrameError>,
+    /// Pixels a silhouette is widened by each way: the sampling's footprint (rule step 3).
+    pad: u8,
     full: bool,
+    refused: Option<FrameError>,
 }
 
+// The plan sits on the stack beside the render's own while a frame draws (the size the
+// `Incremental` and `Changes` docs state).
+#[cfg(target_pointer_width = "32")]
+const _: () = assert!(size_of::<Changes>() <= 996);
+
 impl Changes {
-    fn empty(size: Size) -> Self {
+    fn empty(size: Size, strip_setup: u32, pad: u32) -> Self {
         Self {
-            size,
+            width: edge(size.width),
+            height: edge(size.height),
             regions: Vec::new(),
             rects: Vec::new(),
             strips: Vec::new(),
-            strip_setup: 0,
-            refused: None,
+            strip_setup,
+            pad: u8::try_from(pad).unwrap_or(u8::MAX),
             full: false,
+            refused: None,
         }
     }
 
     fn full(size: Size) -> Self {
-        let image = Rectangle::new(Point::zero(), size);
-        let mut plan = Self::empty(size);
-        let _ = plan.regions.push((Region::Rect(image), image));
+        let image = Area::new(0, 0, size.width, size.height);
+        let mut plan = Self::empty(size, 0, 0);
+        let _ = plan.regions.push(Entry {
+            region: Region::Rect,
+            bbox: image,
+            waste: 0,
+            rect: 0,
+        });
         let _ = plan.rects.push(image);
         let _ = plan.strips.push(image);
         plan.full = true;
@@ -665,40 +756,102 @@ impl Changes {
     }
 
     fn refusal(size: Size, why: FrameError) -> Self {
-        let mut plan = Self::empty(size);
+        let mut plan = Self::empty(size, 0, 0);
         plan.refused = Some(why);
         plan
     }
 
-    /// Adds a region with its bounding box (none if it reaches no pixel); `false` if it
-    /// cannot be planned (not a bounded ellipse, or one too many).
-    fn push(&mut self, region: Option<Region>) -> bool {
-        let Some(region) = region else {
+    /// The image's width and the silhouettes' widening, as a row's cut takes them.
+    fn row_consts(&self) -> (u32, u32) {
+        (u32::from(self.width), u32::from(self.pad))
+    }
+
+    /// Adds a silhouette (rule steps 2 and 3); `false` if it cannot be planned (not a
+    /// bounded ellipse, or one region too many).
+    fn push_silhouette(&mut self, sil: Silhouette) -> bool {
+        if sil.is_all() {
             return false;
+        }
+        let (height, pad) = (u32::from(self.height), u32::from(self.pad));
+        let (a, b) = sil.rows(height);
+        let rows = if pad == 0 || a >= b {
+            (a, b)
+        } else {
+            (a.saturating_sub(pad + 1), b.saturating_add(pad + 1).min(height))
         };
-        let (j0, j1) = region.rows(self.size.height);
+        self.push(Region::Ellipse(sil), rows)
+    }
+
+    /// Adds the integer kernel's cut of a sphere's rows `rows`; `false` if one region
+    /// too many.
+    fn push_cut(&mut self, rows: (u32, u32), cut: IntCut) -> bool {
+        let height = u32::from(self.height);
+        let (j0, j1) = (rows.0.min(height), rows.1.min(height));
+        if cut == IntCut::All {
+            // Every column of its rows.
+            return j0 >= j1 || self.push_area(Area::new(0, j0, u32::from(self.width), j1));
+        }
+        self.push(Region::Int(cut), (j0, j1))
+    }
+
+    /// Adds a rectangle of the image (rule step 4); `false` if one region too many.
+    fn push_rect(&mut self, r: Rectangle) -> bool {
+        r.is_zero_sized() || self.push_area(Area::of(r))
+    }
+
+    fn push_area(&mut self, bbox: Area) -> bool {
+        self.regions
+            .push(Entry {
+                region: Region::Rect,
+                bbox,
+                waste: 0,
+                rect: 0,
+            })
+            .is_ok()
+    }
+
+    /// Adds a region whose runs lie in rows `j0..j1`, with its bounding box (none if it
+    /// has no run: off the image); `false` if one region too many.
+    fn push(&mut self, region: Region, (j0, j1): (u32, u32)) -> bool {
+        let (width, pad) = self.row_consts();
         let (mut x0, mut x1, mut y0, mut y1) = (u32::MAX, 0, u32::MAX, 0);
+        let (mut covered, mut gap) = (0, false);
         for j in j0..j1 {
-            if let Some((lo, hi)) = region.span(j, self.size.width) {
+            if let Some((lo, hi)) = region.cut(j, width, pad) {
+                // A row without a run lies between this one and the last with one.
+                gap |= y0 != u32::MAX && y1 != j;
                 x0 = x0.min(lo);
                 x1 = x1.max(hi);
                 y0 = y0.min(j);
                 y1 = j + 1;
+                covered += hi - lo;
             }
         }
         if x0 >= x1 {
-            return true; // off the image
+            return true;
         }
-        let bbox = Rectangle::new(Point::new(x0 as i32, y0 as i32), Size::new(x1 - x0, y1 - y0));
-        self.regions.push((region, bbox)).is_ok()
+        let bbox = Area::new(x0, y0, x1, y1);
+        let waste = if gap {
+            u16::MAX
+        } else {
+            u16::try_from(bbox.pixels() - covered).unwrap_or(u16::MAX)
+        };
+        self.regions
+            .push(Entry {
+                region,
+                bbox,
+                waste,
+                rect: 0,
+            })
+            .is_ok()
     }
 
     /// The traced rectangles: the regions' boxes, those that overlap merged into one,
-    /// until none does.
+    /// until none does; then each region's rectangle, and the strips.
     fn merge(&mut self) {
         self.rects.clear();
-        for &(_, b) in &self.regions {
-            let _ = self.rects.push(b);
+        for e in &self.regions {
+            let _ = self.rects.push(e.bbox);
         }
         let mut merged = true;
         while merged {
@@ -708,9 +861,9 @@ impl Changes {
                     let (Some(&ra), Some(&rb)) = (self.rects.get(a), self.rects.get(b)) else {
                         continue;
                     };
-                    if !ra.intersection(&rb).is_zero_sized() {
+                    if ra.meets(rb) {
                         if let Some(slot) = self.rects.get_mut(a) {
-                            *slot = bounding(ra, rb);
+                            *slot = ra.bounding(rb);
                         }
                         self.rects.swap_remove(b);
                         merged = true;
@@ -718,6 +871,10 @@ impl Changes {
                     }
                 }
             }
+        }
+        // The rectangles are disjoint: a box meets only the one holding it.
+        for e in &mut self.regions {
+            e.rect = self.rects.iter().position(|r| r.meets(e.bbox)).unwrap_or(0) as u8;
         }
         self.strips.clear();
         for r in 0..self.rects.len() {
@@ -734,27 +891,46 @@ impl Changes {
 
     /// Cuts rectangle `r` into strips of rows, each as wide as its rows' runs reach: a
     /// strip grows a row while the pixels it would trace outside the runs stay within
-    /// the frame kind's [`STRIP_SETUP`] (the cost of the frame set-up a new strip pays); a row without a
-    /// run ends it. `false` if the strips do not fit.
+    /// the frame kind's [`STRIP_SETUP`] (the cost of the frame set-up a new strip pays);
+    /// a row without a run ends it. `false` if the strips do not fit.
     fn cut_strips(&mut self, r: usize) -> bool {
         let Some(&rect) = self.rects.get(r) else {
             return true;
         };
-        let (x0, x1) = (rect.top_left.x as u32, rect.top_left.x as u32 + rect.size.width);
-        let (y0, y1) = (rect.top_left.y as u32, rect.top_left.y as u32 + rect.size.height);
+        let group = r as u8;
+        // The whole rectangle is one strip if it traces at most `STRIP_SETUP` pixels
+        // outside its runs: a strip's pixels outside its runs never shrink as it grows a
+        // row, so the rule below never ends it early. Bounded from the regions' boxes,
+        // without a row's runs: the rectangle's rows are its boxes' rows, joined (boxes
+        // that share no row never merge), so if each box has a run in every row, so has
+        // the rectangle; and its runs hold any one region's.
+        let outside = self
+            .regions
+            .iter()
+            .filter(|e| e.rect == group)
+            .try_fold(u32::MAX, |least, e| {
+                (e.waste != u16::MAX).then(|| least.min(rect.pixels() - e.bbox.pixels() + u32::from(e.waste)))
+            });
+        if outside.is_some_and(|w| w <= self.strip_setup) {
+            return self.strips.push(rect).is_ok();
+        }
+        let (width, pad) = self.row_consts();
+        let (y0, y1) = rect.rows();
         // The open strip: first row, columns, and the pixels of its rows' runs' extents.
         let mut open: Option<(u32, u32, u32, u32)> = None;
         let mut ok = true;
         let mut close =
-            |strips: &mut Vec<Rectangle, MAX_STRIPS>, (top, lo, hi, _): (u32, u32, u32, u32), end: u32| {
-                let strip = Rectangle::new(Point::new(lo as i32, top as i32), Size::new(hi - lo, end - top));
-                ok &= strips.push(strip).is_ok();
+            |strips: &mut Vec<Area, MAX_STRIPS, u8>, (top, lo, hi, _): (u32, u32, u32, u32), end: u32| {
+                ok &= strips.push(Area::new(lo, top, hi, end)).is_ok();
             };
         for j in y0..y1 {
-            // This row's runs within the rectangle (runs of other rectangles lie outside it).
+            // This row's runs' extent: the rectangle's regions' (merging runs closer than
+            // `MERGE_GAP` fills gaps inside it only).
             let extent = self
-                .runs(j)
-                .filter(|&(lo, hi)| lo < x1 && hi > x0)
+                .regions
+                .iter()
+                .filter(|e| e.rect == group)
+                .filter_map(|e| e.span(j, width, pad))
                 .fold(None, |e: Option<(u32, u32)>, (lo, hi)| {
                     Some(e.map_or((lo, hi), |(a, b)| (a.min(lo), b.max(hi))))
                 });
@@ -783,6 +959,24 @@ impl Changes {
         ok
     }
 
+    /// Adds to `runs` the runs in row `j` of rectangle `g`'s regions that can reach
+    /// columns `x0..x1`, merged. A gap is filled only between runs at most
+    /// [`MERGE_GAP`] apart, so within `x0..x1` the runs of the regions reaching
+    /// `x0 − MERGE_GAP..x1 + MERGE_GAP` are those of all of them.
+    fn add_runs(&self, runs: &mut Runs, g: u8, j: u32, (x0, x1): (u32, u32)) {
+        let (width, pad) = self.row_consts();
+        let from = runs.len;
+        for e in &self.regions {
+            let (lo, hi) = e.bbox.cols();
+            if e.rect != g || lo >= x1 + MERGE_GAP || hi + MERGE_GAP <= x0 {
+                continue;
+            }
+            if let Some(span) = e.span(j, width, pad) {
+                runs.insert(span, from, MERGE_GAP);
+            }
+        }
+    }
+
     /// The whole frame is drawn.
     #[must_use]
     pub fn is_full(&self) -> bool {
@@ -803,13 +997,13 @@ impl Changes {
 
     /// The rectangles traced (image coordinates), disjoint.
     pub fn rectangles(&self) -> impl Iterator<Item = Rectangle> + '_ {
-        self.strips.iter().copied()
+        self.strips.iter().map(|s| s.rect())
     }
 
     /// Pixels traced: the rectangles' area.
     #[must_use]
     pub fn traced(&self) -> u32 {
-        self.strips.iter().map(|r| r.size.width * r.size.height).sum()
+        self.strips.iter().map(|s| s.pixels()).sum()
     }
 
     /// The changed runs `[lo, hi)` of image row `j`, left to right, disjoint, runs of
@@ -817,24 +1011,10 @@ impl Changes {
     /// row.
     #[must_use]
     pub fn runs(&self, j: u32) -> Runs {
-        let mut runs = Runs {
-            runs: [(0, 0); MAX_REGIONS],
-            len: 0,
-            next: 0,
-        };
-        for rect in &self.rects {
-            let (y0, y1) = (rect.top_left.y as u32, rect.top_left.y as u32 + rect.size.height);
-            if !(y0 <= j && j < y1) {
-                continue;
-            }
-            let from = runs.len;
-            for (region, bbox) in &self.regions {
-                if bbox.intersection(rect).is_zero_sized() {
-                    continue;
-                }
-                if let Some(span) = region.span(j, self.size.width) {
-                    runs.insert(span, from, MERGE_GAP);
-                }
+        let mut runs = Runs::new();
+        for (g, rect) in self.rects.iter().enumerate() {
+            if rect.has_row(j) {
+                self.add_runs(&mut runs, g as u8, j, rect.cols());
             }
         }
         runs.sort();
@@ -845,7 +1025,7 @@ impl Changes {
     #[must_use]
     pub fn sent(&self) -> (u32, u32) {
         let (mut pixels, mut windows) = (0, 0);
-        for j in 0..self.size.height {
+        for j in 0..u32::from(self.height) {
             for (lo, hi) in self.runs(j) {
                 pixels += hi - lo;
                 windows += 1;
@@ -877,7 +1057,7 @@ impl Changes {
         let clips = self
             .strips
             .iter()
-            .map(|rect| rect.intersection(&band))
+            .map(|strip| strip.rect().intersection(&band))
             .filter(|clip| !clip.is_zero_sized());
         let Ok(()) = render.render_clips(clips, Point::zero(), &mut sink);
         match sink.refused {
@@ -911,7 +1091,10 @@ impl Changes {
         let clips = self
             .strips
             .iter()
-            .map(|rect| Rectangle::new(rect.top_left + offset, rect.size).intersection(&bbox))
+            .map(|strip| {
+                let rect = strip.rect();
+                Rectangle::new(rect.top_left + offset, rect.size).intersection(&bbox)
+            })
             .filter(|clip| !clip.is_zero_sized());
         for clip in clips.clone() {
             stats.traced += clip.size.width * clip.size.height;
@@ -933,18 +1116,27 @@ impl Changes {
 /// The changed runs of one row ([`Changes::runs`]).
 #[derive(Clone, Debug)]
 pub struct Runs {
-    runs: [(u32, u32); MAX_REGIONS],
+    runs: [(u16, u16); MAX_REGIONS],
     len: usize,
     next: usize,
 }
 
 impl Runs {
+    fn new() -> Self {
+        Self {
+            runs: [(0, 0); MAX_REGIONS],
+            len: 0,
+            next: 0,
+        }
+    }
+
     /// Adds `span` to the runs from index `from` on (one rectangle's), merging it with
     /// any it overlaps or comes within `gap` of.
     fn insert(&mut self, (mut lo, mut hi): (u32, u32), from: usize, gap: u32) {
         let mut k = from;
         while k < self.len {
             let Some(&(a, b)) = self.runs.get(k) else { break };
+            let (a, b) = (u32::from(a), u32::from(b));
             if lo <= b + gap && a <= hi + gap {
                 lo = lo.min(a);
                 hi = hi.max(b);
@@ -960,7 +1152,7 @@ impl Runs {
             k += 1;
         }
         if let Some(slot) = self.runs.get_mut(self.len) {
-            *slot = (lo, hi);
+            *slot = (edge(lo), edge(hi));
             self.len += 1;
         }
     }
@@ -975,17 +1167,17 @@ impl Runs {
 impl Iterator for Runs {
     type Item = (u32, u32);
     fn next(&mut self) -> Option<(u32, u32)> {
-        let run = self
+        let (lo, hi) = self
             .runs
             .get(self.next)
             .copied()
             .filter(|_| self.next < self.len)?;
         self.next += 1;
-        Some(run)
+        Some((u32::from(lo), u32::from(hi)))
     }
 }
 
-/// Rows into a `DrawTarget`, only their changed runs, each run its own
+/// Rows of one strip into a `DrawTarget`, only their changed runs, each run its own
 /// `fill_contiguous`.
 struct RunSink<'t, 'c, 's, Tg, C> {
     target: &'t mut Tg,
@@ -1019,8 +1211,20 @@ impl<Tg: DrawTarget<Color = C>, C: PixelColor + From<Rgb888>> RowSink for RunSin
         let j = (area.top_left.y - self.offset.y) as u32;
         let x0 = (area.top_left.x - self.offset.x) as u32;
         let x1 = x0 + area.size.width;
+        // The rectangle the row's strip was cut from (they are disjoint): its regions'
+        // runs are the strip's.
+        let at_row = Area::new(x0, j, x0 + 1, j + 1);
+        let rect = self
+            .changes
+            .rects
+            .iter()
+            .position(|r| r.meets(at_row))
+            .unwrap_or(0) as u8;
+        let mut runs = Runs::new();
+        self.changes.add_runs(&mut runs, rect, j, (x0, x1));
+        runs.sort();
         let mut at = x0;
-        for (lo, hi) in self.changes.runs(j) {
+        for (lo, hi) in runs {
             let (lo, hi) = (lo.max(x0), hi.min(x1));
             if lo >= hi {
                 continue;

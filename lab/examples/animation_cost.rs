@@ -471,7 +471,7 @@ fn reading(md: &mut String, all: &[Measured]) -> std::fmt::Result {
         )?;
     }
     write!(md, "The over-trace is what the rule re-traces that does not change: each moved sphere's old and new silhouettes whole (the pixels inside both that keep their colour), cut into rectangles (strips) around them; with shadows (`bounce`) also the moved ball's old and new shadow on the floor and the other spheres' silhouettes, where its shadow could fall. ")?;
-    write!(md, "Time does not follow the pixel count: a full frame's pixels do not cost alike (background that span culling skips is cheap), and the traced ones lie on and around the moving spheres; each strip also pays the frame's set-up. ")?;
+    write!(md, "Time does not follow the pixel count: a full frame's pixels do not cost alike (background that span culling skips is cheap), and the traced ones lie on and around the moving spheres; each incremental frame also pays its plan and one set-up for all its strips. ")?;
     let still = spread(all.iter().map(|m| m.still_ns / m.still_full_ns).collect());
     writeln!(md, "A frame in which nothing changed costs {:.5}–{:.5} of a full frame (the integer kernel's highest: its comparison computes its per-frame decision and quantisation).\n", still[0], still[2])
 }

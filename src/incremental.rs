@@ -218,7 +218,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         let area = Rectangle::new(area.top_left - shown.offset, area.size);
         self.stale = Some(match self.stale {
             None => area,
-            Some(old) => bounding(old, area),
+            Some(old) => crate::trace::frame::hull(old, area),
         });
     }
 
@@ -1297,15 +1297,6 @@ fn can_shadow(k: &Sphere, j: &Sphere, light: &Light) -> bool {
             !(theta > half(rk, dk) + half(rj, dj) + 1e-9 || dj + rj < dk - rk)
         }
     }
-}
-
-/// The smallest rectangle holding both.
-fn bounding(a: Rectangle, b: Rectangle) -> Rectangle {
-    let x0 = a.top_left.x.min(b.top_left.x);
-    let y0 = a.top_left.y.min(b.top_left.y);
-    let x1 = (a.top_left.x + a.size.width as i32).max(b.top_left.x + b.size.width as i32);
-    let y1 = (a.top_left.y + a.size.height as i32).max(b.top_left.y + b.size.height as i32);
-    Rectangle::new(Point::new(x0, y0), Size::new((x1 - x0) as u32, (y1 - y0) as u32))
 }
 
 // Scenes are compared by their bits: `-0.0` and `0.0` differ, and a NaN equals itself,

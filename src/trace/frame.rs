@@ -182,8 +182,10 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
 /// The columns `i0..i1` and rows `j0..j1` of an image of `size` at `offset` that `clip`
 /// shows; `None` if none. In i64: no overflow for any offset or target size. A target
 /// whose box reaches past `i32::MAX` is clipped at the last coordinate that exists, so
-/// no row wraps around and no row's area runs past `i32::MAX`.
-#[inline(always)]
+/// no row wraps around and no row's area runs past `i32::MAX`. Out of line: once per
+/// frame and per clip, and its 64-bit arithmetic is long on a chip without 64-bit
+/// instructions, where every method's frame would otherwise carry a copy.
+#[inline(never)]
 pub(crate) fn visible(size: Size, offset: Point, clip: Rectangle) -> Option<(u32, u32, u32, u32)> {
     let span = |origin: i32, len: u32, clip_origin: i32, clip_len: u32| {
         let lo = i64::from(origin).max(i64::from(clip_origin));

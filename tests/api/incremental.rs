@@ -15,13 +15,14 @@ use embedded_raytracer::{
 use crate::common::Rng;
 
 /// A frame buffer of any colour, every pixel starting at `fill`; counts the pixels and
-/// `fill_contiguous` calls it gets.
+/// `fill_contiguous` calls it gets, and keeps the calls' rectangles.
 #[derive(Clone, PartialEq)]
 struct Buffer<C> {
     size: Size,
     px: Vec<C>,
     written: usize,
     calls: usize,
+    windows: Vec<Rectangle>,
 }
 
 impl<C: PixelColor> Buffer<C> {
@@ -31,6 +32,7 @@ impl<C: PixelColor> Buffer<C> {
             px: vec![fill; (size.width * size.height) as usize],
             written: 0,
             calls: 0,
+            windows: Vec::new(),
         }
     }
 }
@@ -62,6 +64,7 @@ impl<C: PixelColor> DrawTarget for Buffer<C> {
         colors: I,
     ) -> Result<(), Infallible> {
         self.calls += 1;
+        self.windows.push(*area);
         self.draw_iter(area.points().zip(colors).map(|(p, c)| Pixel(p, c)))
     }
 }
@@ -333,6 +336,145 @@ fn lit_sequences_equal_the_full_render() {
                 Rgb565::BLACK,
                 5,
             );
+        }
+    }
+}
+
+/// Draws `render` through `shown` onto `display` cut to `clip` and checks that its
+/// windows, row by row, are the runs of `planner`'s plan of the same frame
+/// (`Changes::runs`) within the target: a strip's sink, which asks only its rectangle's
+/// regions near its columns, sends the runs the whole plan has, merged alike.
+fn check_windows<const N: usize, const L: usize, const P: usize, const D: usize>(
+    (shown, planner): (&mut Incremental<N, L, P, D>, &mut Incremental<N, L, P, D>),
+    render: &Render<'_, N, Rgb565, L, P, D>,
+    display: &mut Buffer<Rgb565>,
+    clip: Rectangle,
+) {
+    let changes = planner.update(render);
+    display.windows.clear();
+    let stats = shown.draw(render, &mut display.clipped(&clip)).unwrap();
+    let mut sent: Vec<_> = display
+        .windows
+        .iter()
+        .map(|w| (w.top_left.y, w.top_left.x, w.size.width, w.size.height))
+        .collect();
+    sent.sort_unstable();
+    let (x0, x1) = (clip.top_left.x as u32, clip.top_left.x as u32 + clip.size.width);
+    let rows = clip.top_left.y as u32..clip.top_left.y as u32 + clip.size.height;
+    let runs: Vec<_> = rows
+        .flat_map(|j| {
+            changes
+                .runs(j)
+                .map(move |(lo, hi)| (lo.max(x0), hi.min(x1)))
+                .filter(|(lo, hi)| lo < hi)
+                .map(move |(lo, hi)| (j as i32, lo as i32, hi - lo, 1))
+        })
+        .collect();
+    assert_eq!(
+        sent,
+        runs,
+        "{} {:?} clip {clip:?}",
+        render.method(),
+        render.sampling()
+    );
+    let pixels: u32 = runs.iter().map(|r| r.2).sum();
+    assert_eq!((stats.sent, stats.windows as usize), (pixels, runs.len()));
+}
+
+#[test]
+fn the_windows_sent_are_the_runs() {
+    let mut rng = Rng(0x5eed_0f70);
+    for case in 0..8 {
+        let camera = camera(&mut rng);
+        let mut scene: Scene<4> = Scene::new(Rgb888::new(10, 20, 30));
+        for _ in 0..4 {
+            scene.push(sphere(&mut rng)).unwrap();
+        }
+        // The whole image, and a target that cuts the strips at odd columns.
+        let x = 3 + case;
+        let cut = Rectangle::new(Point::new(x, 2), Size::new(SIZE.width - 2 * x as u32, 25));
+        let mut display = Buffer::new(SIZE, Rgb565::BLACK);
+        for method in [Method::F32, Method::INTEGER] {
+            for sampling in samplings() {
+                for clip in [Rectangle::new(Point::zero(), SIZE), cut] {
+                    let mut scene = scene.clone();
+                    let mut two = (Incremental::new(), Incremental::new());
+                    for f in 0..6 {
+                        if f > 0 {
+                            motion(&mut rng, &mut scene);
+                        }
+                        let render = Render::new(&scene, &camera)
+                            .with_method(method)
+                            .with_sampling(sampling);
+                        check_windows((&mut two.0, &mut two.1), &render, &mut display, clip);
+                    }
+                }
+            }
+        }
+        let mut lit = lit_scene(&mut rng, case % 2 == 1, 1 + case as usize % 2);
+        let mut two = (Incremental::new(), Incremental::new());
+        for f in 0..6 {
+            if f > 0 {
+                motion(&mut rng, &mut lit);
+            }
+            check_windows(
+                (&mut two.0, &mut two.1),
+                &Render::new(&lit, &camera),
+                &mut display,
+                cut,
+            );
+        }
+    }
+}
+
+/// Two spheres side by side a few pixels apart, joined into one rectangle by a third
+/// above them, all three recoloured: in their middle rows the two runs merge across the
+/// gap, and a target whose edge falls in the gap gets the merged run's part of it.
+#[test]
+fn a_target_cut_in_a_merged_gap_gets_its_part() {
+    let camera = CameraParams::new(
+        Vec3::new(0.0, 0.0, 8.0),
+        Vec3::ZERO,
+        Vec3::new(0.0, 1.0, 0.0),
+        0.6,
+        SIZE,
+    )
+    .build()
+    .unwrap();
+    let mut display = Buffer::new(SIZE, Rgb565::BLACK);
+    for step in 0..12 {
+        let half = 0.5 + 0.05 * step as f32;
+        let red = Rgb888::new(200, 40, 40);
+        let at = |x: f32, y: f32, r: f32| Sphere::new(Vec3::new(x, y, 0.0), r, red);
+        let before: Scene<3> = Scene::from_array(
+            [at(-half, 0.0, 0.5), at(half, 0.0, 0.5), at(0.0, 0.95, 0.6)],
+            Rgb888::BLACK,
+        );
+        let mut after = before.clone();
+        for k in 0..3 {
+            let s = after.spheres()[k];
+            after
+                .set_sphere(
+                    k,
+                    Sphere {
+                        color: Rgb888::new(40, 200, 40),
+                        ..s
+                    },
+                )
+                .unwrap();
+        }
+        let edges = (1..SIZE.width as i32).flat_map(|x| {
+            [
+                Rectangle::new(Point::zero(), Size::new(x as u32, SIZE.height)),
+                Rectangle::new(Point::new(x, 0), Size::new(SIZE.width - x as u32, SIZE.height)),
+            ]
+        });
+        for clip in edges {
+            let mut two = (Incremental::new(), Incremental::new());
+            for scene in [&before, &after] {
+                let render = Render::new(scene, &camera);
+                check_windows((&mut two.0, &mut two.1), &render, &mut display, clip);
+            }
         }
     }
 }

@@ -21,7 +21,10 @@
 //!   same frame buffer, the baseline of the same run.
 //!
 //! Then per sequence a `setup` line (an incremental frame whose only change is one
-//! pixel: the comparison of scenes, the plan and one strip's frame set-up) and a
+//! pixel: the comparison of scenes, the plan and one strip's frame set-up), a `stack`
+//! line (the most stack an incremental frame of the sequence used, each frame drawn a
+//! second time from a copy of the `Incremental` under the stack paint, and the stack of
+//! the last frame drawn whole, as `Render::draw`; bytes below the caller) and a
 //! `check` line: the frame buffer's hash after the sequence and the hash of the last
 //! frame's full render (`PixelHash` over the `Rgb565` colours in row order), which must
 //! be equal, and equal to the host's (`lab/tests/lab/firmware_hashes.rs`).
@@ -169,6 +172,8 @@ mod fw {
         let mut shown: Incremental<N, L, PL, D> = Incremental::new();
         let mut row = [Rgb565::BLACK; W as usize];
         let mut ok = true;
+        // The most stack an incremental frame used; `None` once one overran the region.
+        let mut stack = Some(0);
         for frame in 0..=animation.frames() {
             if animation
                 .apply_frame(base, &params, frame, &mut scene, &mut at)
@@ -177,6 +182,18 @@ mod fw {
                 return false;
             }
             let Ok(camera) = at.build() else { return false };
+            // The same frame from a copy of what the display shows, under the stack
+            // paint (the same pixels again; not timed: painting costs instructions).
+            let mut probe = shown.clone();
+            let mut scratch = Display {
+                px: &mut *fb,
+                bytes: 0,
+            };
+            let probed = run.stack(|| {
+                let render = Render::new(&scene, &camera).with_method(method());
+                let _ = probe.draw(&render, &mut scratch);
+            });
+            stack = stack.zip(probed).map(|(a, b)| a.max(b));
             let mut display = Display {
                 px: &mut *fb,
                 bytes: 0,
@@ -226,6 +243,26 @@ mod fw {
             let _ = shown.draw(&Render::new(&scene, &camera).with_method(method()), &mut display);
         });
         run.platform.print(format_args!("setup {} instr {}", name, setup));
+        let mut whole = Display {
+            px: &mut row[..],
+            bytes: 0,
+        };
+        let full_stack = run.stack(|| {
+            let _ = Render::new(&scene, &camera)
+                .with_method(method())
+                .draw(&mut whole);
+        });
+        match (stack, full_stack) {
+            (Some(incremental), Some(full)) => run.platform.print(format_args!(
+                "stack {} incremental {} full {}",
+                name, incremental, full
+            )),
+            _ => {
+                run.platform
+                    .print(format_args!("FAIL {} overran the stack region", name));
+                ok = false;
+            }
+        }
         // The display against the last frame's full render.
         let mut shown_hash = Hash565(PixelHash::new(Size::new(W, H)));
         let _ = shown_hash.fill_contiguous(

@@ -284,6 +284,12 @@ impl<P: Platform> Run<P> {
         self.platform.instructions(ticks.saturating_sub(self.overhead))
     }
 
+    /// The stack `f` uses below the caller's frame (bytes; `None` if it reached the
+    /// bottom of the stack region), measured like a render's.
+    pub fn stack(&self, f: impl FnOnce()) -> Option<usize> {
+        stack_of(&self.platform, f)
+    }
+
     /// Checks the tick-to-instruction conversion on a loop of `2n` instructions:
     /// within 0.001 % + 20 instructions, or two ticks where a tick is coarser than 10
     /// instructions (each wrap of a 24-bit SysTick also costs its exception, ~12).

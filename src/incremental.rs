@@ -125,7 +125,9 @@ pub struct FrameStats {
 /// (`size_of::<Scene<N, L, P, D>>()`: 32 bytes a sphere of capacity `N`, 24 a light, 56
 /// a plane, and 40) and 128 bytes more; it holds no pixel. While it draws, its plan of
 /// the frame ([`Changes`], 996 bytes on a 32-bit target) is on the stack beside the
-/// render's own.
+/// render's own: measured on a Cortex-M4F, an incremental frame of a 3-sphere Lab #1
+/// scene (integer kernel) takes 1,844 bytes of stack against 1,772 drawn whole, of a
+/// lit 3-sphere scene with a floor 2,148 against 1,808 (`docs/animation.md`).
 ///
 /// ```
 /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::{Rgb565, Rgb888}, prelude::*};

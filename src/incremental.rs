@@ -89,9 +89,9 @@ pub const MERGE_GAP: u32 = 5;
 /// regions, the integer kernel's rule) paid once, so a strip costs only its rows'
 /// start; adaptive sampling's rows hold their clip, so there each strip is a frame of
 /// its own and pays the set-up. On the Cortex-M4F `bounce`'s worst frame traces 5,158
-/// pixels in 20 strips for 3.50 M instructions, where strips that each paid the set-up,
-/// cut at 128, traced 5,626 in 7 for 4.10 M (`lab/firmware/examples/qemu_animation.rs`).
-/// Tuning constants: any values draw the same pixels.
+/// pixels in 20 strips for 3.42 M instructions (`lab/firmware/examples/qemu_animation.rs`,
+/// `lab/data/qemu_animation_cortex_m4.txt`). Tuning constants: any values draw the
+/// same pixels.
 pub const STRIP_SETUP: [u32; 2] = [16, 512];
 
 /// At most this many strips a frame; more trace each rectangle whole.
@@ -112,8 +112,8 @@ pub struct FrameStats {
     pub sent: u32,
     /// Runs (one `fill_contiguous` each) they were sent in.
     pub windows: u32,
-    /// Strips (rectangles of rows) traced; in a frame without features each is a
-    /// render of its own and pays the frame's set-up.
+    /// Strips (rectangles of rows) traced, as one frame that pays its set-up once;
+    /// under adaptive sampling each strip is a frame of its own.
     pub strips: u32,
     /// The frame could not be drawn exactly ([`Render::check`]): nothing was sent, and
     /// the next frame is drawn whole.
@@ -373,12 +373,12 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         } else {
             None
         };
-        let kind = if matches!(render.sampling(), Sampling::Adaptive(_)) {
+        let strip_setup = if matches!(render.sampling(), Sampling::Adaptive(_)) {
             STRIP_SETUP[1]
         } else {
             STRIP_SETUP[0]
         };
-        let mut plan = Changes::empty(size, kind, pad);
+        let mut plan = Changes::empty(size, strip_setup, pad);
         let frame = Sil {
             camera,
             scale,
@@ -893,8 +893,8 @@ impl Changes {
 
     /// Cuts rectangle `r` into strips of rows, each as wide as its rows' runs reach: a
     /// strip grows a row while the pixels it would trace outside the runs stay within
-    /// the frame kind's [`STRIP_SETUP`] (the cost of the frame set-up a new strip pays);
-    /// a row without a run ends it. `false` if the strips do not fit.
+    /// the frame kind's [`STRIP_SETUP`] (what a new strip costs); a row without a run
+    /// ends it. `false` if the strips do not fit.
     fn cut_strips(&mut self, r: usize) -> bool {
         let Some(&rect) = self.rects.get(r) else {
             return true;

@@ -134,7 +134,8 @@
 // `!(x >= bound)` is deliberate throughout: it rejects NaN along with out-of-range values.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-#[cfg(host_std)]
+// The unit tests use `std` (printing, `Vec`) whatever the features.
+#[cfg(any(host_std, test))]
 extern crate std;
 
 // The rooms, bottom to top: each imports only from those above it in this list

@@ -100,6 +100,9 @@ fn median(v: &mut [f64]) -> f64 {
 /// often preempted for a whole scheduler slice, and wall-clock medians then measure the
 /// other processes; the CPU clock does not count the time the thread waits.
 #[cfg(all(target_os = "linux", target_pointer_width = "64"))]
+// The one foreign call of the host tools: libc's thread clock, which the standard
+// library does not expose.
+#[allow(unsafe_code)]
 fn now() -> u64 {
     #[repr(C)]
     struct Timespec {

@@ -5,7 +5,9 @@ use crate::common;
 
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-use embedded_raytracer::{Camera, Method, Options, Render, Scene, SphereTest, Sqrt, Stepping};
+use embedded_raytracer::{Camera, Method, Render, Scene};
+#[cfg(feature = "bench-baselines")]
+use embedded_raytracer::{Options, SphereTest, Sqrt, Stepping};
 
 use common::{random_case, Frame, Rng};
 
@@ -53,6 +55,7 @@ fn check_clip<const N: usize>(
 /// The lab scene, clipped on every side and offset, with every method: the forward
 /// differences' anchors sit at the whole image's span starts, so even they match.
 #[test]
+#[cfg(feature = "std")]
 fn clipped_and_offset_draws_equal_the_whole_render_on_lab() {
     let lab = common::load("lab");
     let camera = common::shrink(&lab.camera, 96, 72);
@@ -113,6 +116,7 @@ fn clipped_draws_equal_the_whole_render_on_random_scenes() {
 /// default-method pixel, and an unanchored 8192-wide row (K = 8192) where it changed
 /// 183 pixels of `direct/forward-diff/exact`.
 #[test]
+#[cfg(feature = "bench-baselines")]
 fn pinned_cases_where_the_clip_used_to_move_pixels() {
     let full_width = |x0: i32, size: Size| Rectangle::new(Point::new(x0, 0), size);
     for (seed, x0) in [(575u64, 41), (684, 2), (1461, 18)] {

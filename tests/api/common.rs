@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 /// The standard scenes (`scenes/*.toml`), by name, as the lab's tables order them.
+#[cfg(feature = "std")]
 mod standard {
     use embedded_raytracer::scene_file::{self, SceneFile};
 
@@ -32,6 +33,7 @@ mod standard {
     }
 }
 
+#[cfg(feature = "std")]
 #[allow(unused_imports)]
 pub use standard::{load, load_full, path, FEATURE_SCENES, MAX_SPHERES, SCENES};
 

@@ -9,8 +9,10 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_raytracer::{
     Camera, Light, Material, Method, Options, Plane, Render, Scene, SceneError, SecondaryOrigin, Settings,
-    SettingsError, Sphere, SphereTest, Vec3,
+    SettingsError, Sphere, Vec3,
 };
+#[cfg(feature = "bench-baselines")]
+use embedded_raytracer::SphereTest;
 
 use common::Frame;
 
@@ -75,22 +77,25 @@ fn every_method_draws_the_same_pixels_whatever_the_clip_band_or_shortcut() {
     for method in Method::ALL {
         let render = Render::new(&scene, &camera).with_method(method);
         let whole = common::trace(render);
-        let differing = |options: Options| {
-            let other = common::trace(render.with_options(options));
-            whole.iter().zip(&other).filter(|(a, b)| a != b).count()
-        };
         // Any-hit shadow rays change no pixel; nor does span culling, except for the
         // forward-differenced tests, whose anchors sit at the span starts.
-        assert_eq!(
-            differing(Options::DEFAULT.with_shadow_any_hit(false)),
-            0,
-            "{method}: any-hit"
-        );
-        if !matches!(method.sphere_test, SphereTest::ForwardDiff | SphereTest::Auto) {
-            let literal = Options::DEFAULT
-                .with_span_culling(false)
-                .with_shadow_any_hit(false);
-            assert_eq!(differing(literal), 0, "{method}: the literal loop");
+        #[cfg(feature = "bench-baselines")]
+        {
+            let differing = |options: Options| {
+                let other = common::trace(render.with_options(options));
+                whole.iter().zip(&other).filter(|(a, b)| a != b).count()
+            };
+            assert_eq!(
+                differing(Options::DEFAULT.with_shadow_any_hit(false)),
+                0,
+                "{method}: any-hit"
+            );
+            if !matches!(method.sphere_test, SphereTest::ForwardDiff | SphereTest::Auto) {
+                let literal = Options::DEFAULT
+                    .with_span_culling(false)
+                    .with_shadow_any_hit(false);
+                assert_eq!(differing(literal), 0, "{method}: the literal loop");
+            }
         }
         // A clipped, offset draw.
         let clip = Rectangle::new(Point::new(9, 5), Size::new(41, 30));
@@ -380,6 +385,7 @@ fn scene_errors() {
 /// anywhere, every fourth scene with shadows off (its shadow spans are not built). The
 /// robust test, bit for bit against the literal loop.
 #[test]
+#[cfg(feature = "bench-baselines")]
 fn culling_changes_no_pixel_on_random_lit_scenes() {
     let mut rng = common::Rng(0x5eed_1175);
     let mut shadowed = 0;

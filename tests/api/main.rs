@@ -3,6 +3,7 @@
 //! bands, scale, culling, the scene features, and a frame drawn into the desktop
 //! simulator's headless display. The tests against the f64 reference live in the lab.
 
+#[cfg(feature = "std")] // the standard scenes are scene files
 mod band;
 mod camera;
 mod clip;
@@ -12,5 +13,7 @@ mod intersect;
 mod lit;
 mod render;
 mod scale;
+#[cfg(feature = "std")] // the standard scenes are scene files
 mod simulator;
+#[cfg(feature = "std")] // the standard scenes are scene files
 mod speed;

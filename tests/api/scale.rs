@@ -4,11 +4,15 @@
 //! camera-relative method. (World-space stepping is the slides' drift by design: its
 //! error grows with `|eye|`, see `lab/tests/lab/stability.rs`.)
 
+#[cfg(feature = "std")]
 use crate::common;
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
-use embedded_raytracer::{CameraParams, Method, Render, Scene, Sphere, Stepping, Vec3};
+use embedded_raytracer::{Render, Scene, Sphere, Vec3};
+#[cfg(feature = "std")]
+use embedded_raytracer::{CameraParams, Method, Stepping};
 
+#[cfg(feature = "std")]
 fn scaled<const N: usize>(scene: &Scene<N>, s: f32) -> Scene<N> {
     let mut out = Scene::new(scene.background());
     for sphere in scene.spheres() {
@@ -19,6 +23,7 @@ fn scaled<const N: usize>(scene: &Scene<N>, s: f32) -> Scene<N> {
 }
 
 #[test]
+#[cfg(feature = "std")]
 fn every_power_of_two_scale_draws_the_same_picture() {
     for name in common::SCENES {
         let file = common::load(name);

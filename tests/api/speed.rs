@@ -9,7 +9,9 @@ use embedded_graphics::prelude::*;
 use embedded_raytracer::{
     Camera, Light, Method, Options, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3,
 };
-use embedded_raytracer::{AUTO_FD_CAPACITY, FD_ANCHOR_INTERVAL};
+use embedded_raytracer::AUTO_FD_CAPACITY;
+#[cfg(feature = "bench-baselines")]
+use embedded_raytracer::FD_ANCHOR_INTERVAL;
 
 use crate::common;
 use common::{load, random_case, shrink, Rng, Traced, SCENES};
@@ -28,11 +30,13 @@ fn trace_with<const N: usize>(
     )
 }
 
+#[cfg(feature = "bench-baselines")]
 /// With span culling on (the default) or off.
 fn trace<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, culling: bool) -> Vec<Traced> {
     trace_with(scene, camera, method, Options::DEFAULT.with_span_culling(culling))
 }
 
+#[cfg(feature = "bench-baselines")]
 /// With anchor interval `k`.
 fn trace_k<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, k: u32) -> Vec<Traced> {
     trace_with(scene, camera, method, Options::DEFAULT.with_anchor_interval(k))
@@ -45,6 +49,7 @@ fn span_invariant(m: &Method) -> bool {
 }
 
 #[test]
+#[cfg(feature = "bench-baselines")]
 fn culling_changes_no_pixel_on_the_standard_scenes() {
     for name in SCENES {
         let file = load(name);
@@ -65,6 +70,7 @@ fn culling_changes_no_pixel_on_the_standard_scenes() {
 }
 
 #[test]
+#[cfg(feature = "bench-baselines")]
 fn culling_changes_no_pixel_on_random_scenes() {
     // More cases and another seed from the environment for a longer soak, e.g.
     // `SPEED_CASES=5000 SPEED_SEED=7 cargo test --release --test speed random`.
@@ -95,6 +101,7 @@ fn culling_changes_no_pixel_on_random_scenes() {
     assert!(hits > 100_000, "only {hits} hits");
 }
 
+#[cfg(feature = "bench-baselines")]
 /// Pixels whose hit/miss differs, and pixels whose colour differs, between two traces.
 fn compare(a: &[Traced], b: &[Traced]) -> (usize, usize, u8) {
     let coverage = a
@@ -123,6 +130,7 @@ fn compare(a: &[Traced], b: &[Traced]) -> (usize, usize, u8) {
 /// and colour differences of the forward-differenced test against the robust test on
 /// every standard scene, for K = 1 … 8192. The chosen K must be as good as K = 1.
 #[test]
+#[cfg(feature = "bench-baselines")]
 fn forward_diff_error_against_k() {
     let fd = Method::new(Stepping::Incremental, SphereTest::ForwardDiff, Sqrt::Exact);
     let robust = Method::new(Stepping::Incremental, SphereTest::Robust, Sqrt::Exact);
@@ -155,6 +163,7 @@ fn forward_diff_error_against_k() {
 /// Where the forward differences break: a sphere filling an 8192-wide row with no
 /// re-anchoring (K = 8192) flips edge pixels against the robust test; the default K does not.
 #[test]
+#[cfg(feature = "bench-baselines")]
 fn forward_diff_breaks_without_anchors_on_a_huge_row() {
     let (scene, camera) = common::huge_row();
     let fd = Method::new(Stepping::Direct, SphereTest::ForwardDiff, Sqrt::Exact);

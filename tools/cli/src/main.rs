@@ -50,7 +50,6 @@ use std::fs::{self, OpenOptions};
 use std::io::{self, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Duration;
 
 use clap::Parser;
 use embedded_graphics::pixelcolor::Rgb888;
@@ -134,22 +133,22 @@ fn run() -> Result<(), String> {
     // A stream may be this process's own standard output (`--output /dev/stdout`): the
     // summary then goes to standard error, after the PNG.
     let summary_to_stderr = matches!(destination, Destination::Stream { .. });
-    let (rendering, encoding, arithmetic) = match file.spheres_only() {
+    let (timing, arithmetic) = match file.spheres_only() {
         // No light, plane or mirror: the spheres-only type, whose loop is Lab #1's.
         Some(spheres) => {
             let render = Render::new(&spheres.scene, &camera)
                 .with_method(method)
                 .with_sampling(sampling);
-            let (r, e) = write_output(&render, &job, destination, &output, &scene)?;
-            (r, e, render.arithmetic())
+            let timing = write_output(&render, &job, destination, &output, &scene)?;
+            (timing, render.arithmetic())
         }
         None => {
             let render = Render::new(&file.scene, &camera)
                 .with_method(method)
                 .with_options(Options::DEFAULT.with_secondary(secondary))
                 .with_sampling(sampling);
-            let (r, e) = write_output(&render, &job, destination, &output, &scene)?;
-            (r, e, render.arithmetic())
+            let timing = write_output(&render, &job, destination, &output, &scene)?;
+            (timing, render.arithmetic())
         }
     };
 
@@ -162,14 +161,16 @@ fn run() -> Result<(), String> {
         other => format!(", sampling {other}"),
     };
     let summary = format!(
-        "{}: {}x{} pixels{}, method {method}, arithmetic {arithmetic}{sampling}, {:.3} ms ({:.1} ns/pixel), PNG {:.3} ms, {threads} thread{}{memory} -> {}",
+        "{}: {}x{} pixels{}, method {method}, arithmetic {arithmetic}{sampling}, {:.3} ms ({:.1} ns/pixel traced), PNG {:.3} ms, {threads} thread{}{memory} -> {}",
         scene.display(),
         size.width,
         size.height,
         features(&file, secondary),
-        rendering.as_secs_f64() * 1e3,
-        rendering.as_secs_f64() * 1e9 / pixels as f64,
-        encoding.as_secs_f64() * 1e3,
+        timing.rendering.as_secs_f64() * 1e3,
+        // The tracing alone, summed over the threads: a pool's start would otherwise
+        // dominate a small frame's figure.
+        timing.tracing.as_secs_f64() * 1e9 / pixels as f64,
+        timing.encoding.as_secs_f64() * 1e3,
         if threads == 1 { "" } else { "s" },
         output.display()
     );
@@ -183,14 +184,14 @@ fn run() -> Result<(), String> {
 }
 
 /// Writes the PNG of `render` to `destination` (the output rules of the module docs);
-/// returns the time spent tracing and the time spent encoding and writing.
+/// returns where the time went.
 fn write_output<const N: usize, const L: usize, const P: usize, const D: usize>(
     render: &Render<'_, N, Rgb888, L, P, D>,
     job: &png_out::Job,
     destination: Destination,
     name: &Path,
     scene: &Path,
-) -> Result<(Duration, Duration), String> {
+) -> Result<png_out::Timing, String> {
     // Before any file is made: a frame the kernel cannot draw exactly is refused whole.
     render.check().map_err(|e| frame_message(scene, e))?;
     write_with(destination, name, |file| png_out::write(render, job, file))

@@ -32,23 +32,37 @@ pub struct Job {
     pub progress: bool,
 }
 
-/// Renders into a PNG stream on `out`; returns the time spent tracing (the whole minus
-/// the encoder's share: with threads, the time the encoder waited for bands) and the time
-/// spent encoding and writing.
+/// Where a render's time went.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Timing {
+    /// Wall time of the render less the encoder's share (with threads: the pool's start
+    /// and the time the encoder waited for bands).
+    pub rendering: Duration,
+    /// The time spent inside `draw_band`, summed over the bands (and so over the
+    /// threads): the tracing alone, whatever the pool costs to start.
+    pub tracing: Duration,
+    /// The time spent encoding and writing the PNG.
+    pub encoding: Duration,
+}
+
+/// Renders into a PNG stream on `out`; returns where the time went.
 pub fn write<const N: usize, const L: usize, const P: usize, const D: usize>(
     render: &Render<'_, N, Rgb888, L, P, D>,
     job: &Job,
     out: &File,
-) -> io::Result<(Duration, Duration)> {
+) -> io::Result<Timing> {
     let start = Instant::now();
     let size = job.size;
     let mut out = BufWriter::new(out);
     let mut writer = rgb_encoder(&mut out, size).write_header()?;
     let mut encoding = Duration::ZERO;
+    let mut tracing = Duration::ZERO;
     {
         let mut stream = writer.stream_writer()?;
         let mut progress = Progress::new(job, start);
-        let mut emit = |rows: u32, bytes: &[u8]| -> io::Result<()> {
+        let mut emit = |rows: u32, band: Band| -> io::Result<()> {
+            tracing += band.tracing;
+            let bytes = &band.bytes;
             let t = Instant::now();
             stream.write_all(bytes)?;
             encoding += t.elapsed();
@@ -59,8 +73,8 @@ pub fn write<const N: usize, const L: usize, const P: usize, const D: usize>(
             let mut pixels = Vec::new();
             for k in 0..size.height.div_ceil(BAND) {
                 let rows = band_rows(k, size.height);
-                let bytes = trace_band(render, size.width, rows.clone(), &mut pixels)?;
-                emit(rows.len() as u32, &bytes)?;
+                let band = trace_band(render, size.width, rows.clone(), &mut pixels)?;
+                emit(rows.len() as u32, band)?;
             }
         } else {
             in_parallel(render, size, job.threads, &mut emit)?;
@@ -74,7 +88,11 @@ pub fn write<const N: usize, const L: usize, const P: usize, const D: usize>(
     writer.finish()?;
     out.flush()?;
     encoding += t.elapsed();
-    Ok((start.elapsed().saturating_sub(encoding), encoding))
+    Ok(Timing {
+        rendering: start.elapsed().saturating_sub(encoding),
+        tracing,
+        encoding,
+    })
 }
 
 /// The encoder of every PNG the CLI writes: 8-bit RGB, the crate's default
@@ -174,19 +192,30 @@ fn band_rows(k: u32, height: u32) -> std::ops::Range<u32> {
     k * BAND..((k + 1) * BAND).min(height)
 }
 
+/// A traced band: its RGB bytes and the time `draw_band` took.
+struct Band {
+    bytes: Vec<u8>,
+    tracing: Duration,
+}
+
 /// Traces `rows` into `pixels` (reused) and returns their RGB bytes.
 fn trace_band<const N: usize, const L: usize, const P: usize, const D: usize>(
     render: &Render<'_, N, Rgb888, L, P, D>,
     width: u32,
     rows: std::ops::Range<u32>,
     pixels: &mut Vec<Rgb888>,
-) -> io::Result<Vec<u8>> {
+) -> io::Result<Band> {
     pixels.clear();
     pixels.resize(width as usize * rows.len(), Rgb888::BLACK);
+    let start = Instant::now();
     render
         .draw_band(rows, pixels)
         .map_err(|e| io::Error::other(format!("the render refused a band: {e:?}")))?;
-    Ok(pixels.iter().flat_map(|c| [c.r(), c.g(), c.b()]).collect())
+    let tracing = start.elapsed();
+    Ok(Band {
+        bytes: pixels.iter().flat_map(|c| [c.r(), c.g(), c.b()]).collect(),
+        tracing,
+    })
 }
 
 /// The bands traced on a pool of `threads` threads and handed to `emit` in order, on
@@ -195,7 +224,7 @@ fn in_parallel<const N: usize, const L: usize, const P: usize, const D: usize>(
     render: &Render<'_, N, Rgb888, L, P, D>,
     size: Size,
     threads: usize,
-    emit: &mut impl FnMut(u32, &[u8]) -> io::Result<()>,
+    emit: &mut impl FnMut(u32, Band) -> io::Result<()>,
 ) -> io::Result<()> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -204,7 +233,7 @@ fn in_parallel<const N: usize, const L: usize, const P: usize, const D: usize>(
         .map_err(io::Error::other)?;
     let bands = size.height.div_ceil(BAND);
     let window = (2 * threads).min(bands as usize) as u32;
-    let (done, finished) = mpsc::channel::<(u32, io::Result<Vec<u8>>)>();
+    let (done, finished) = mpsc::channel::<(u32, io::Result<Band>)>();
     pool.in_place_scope(|scope| {
         let spawn = |k: u32| {
             let done = done.clone();
@@ -226,7 +255,7 @@ fn in_parallel<const N: usize, const L: usize, const P: usize, const D: usize>(
                 let (i, bytes) = finished.recv().map_err(io::Error::other)?;
                 waiting.insert(i, bytes);
             };
-            emit(band_rows(k, size.height).len() as u32, &bytes?)?;
+            emit(band_rows(k, size.height).len() as u32, bytes?)?;
             if next < bands {
                 spawn(next);
                 next += 1;

@@ -1,15 +1,13 @@
-//! The desktop preview's display models, as the page shows them: a model's colour
-//! conversion (with the kernel's ordered dither for the dithered ones) and the OLED
-//! themes of the 1-bit models, in the window colours of embedded-graphics-simulator.
+//! The desktop preview's display models and OLED themes by name, as the page picks
+//! them: the names and colours of the shared display crate's `Model` and `Theme`.
 //!
-//! Stop-gap until the shared display crate (`tools/display`) is in the workspace; this
-//! module then goes and the page uses that crate's models.
+//! Stop-gap until that crate (`tools/display`, `embedded-raytracer-display`) is in the
+//! workspace: the same names and signatures, so that the page then imports them from
+//! it and this module goes.
 
-use embedded_graphics::pixelcolor::{BinaryColor, Gray2, Gray4, Gray8, Rgb565, Rgb888, RgbColor};
-use embedded_graphics::prelude::Point;
-use embedded_raytracer::dither::{dither, Bayer};
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
-/// The display a firmware drives: a colour type, with or without the kernel's dither
+/// The display the firmware drives: colour type and whether the kernel's dither sits
 /// in front of it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Model {
@@ -53,36 +51,19 @@ impl Model {
         }
     }
 
-    /// The model named `name`.
-    pub fn parse(name: &str) -> Option<Model> {
+    /// The model named `name`, if there is one.
+    pub fn from_name(name: &str) -> Option<Model> {
         Model::ALL.into_iter().find(|m| m.name() == name)
     }
 
-    /// Whether the display is 1-bit: an OLED theme colours it.
+    /// Whether the panel has one bit a pixel (an OLED theme colours it).
     pub fn is_binary(self) -> bool {
         matches!(self, Model::Binary | Model::BinaryDither)
     }
-
-    /// The colour the display shows for the kernel's `color` at `point`, as an `Rgb888`
-    /// (the colour type's own conversion back, before any theme): what the firmware's
-    /// `C::from(Rgb888)` or the dither writes, read back as embedded-graphics does.
-    pub fn shown(self, color: Rgb888, point: Point, bayer: Bayer) -> Rgb888 {
-        match self {
-            Model::Rgb888 => color,
-            Model::Rgb565 => Rgb565::from(color).into(),
-            Model::Gray8 => Gray8::from(color).into(),
-            Model::Gray4 => Gray4::from(color).into(),
-            Model::Gray2 => Gray2::from(color).into(),
-            Model::Binary => BinaryColor::from(color).into(),
-            Model::Gray4Dither => dither::<Gray4>(color, point, bayer).into(),
-            Model::Gray2Dither => dither::<Gray2>(color, point, bayer).into(),
-            Model::BinaryDither => dither::<BinaryColor>(color, point, bayer).into(),
-        }
-    }
 }
 
-/// The OLED themes of the 1-bit models (embedded-graphics-simulator's `OledBlue` and
-/// `OledWhite`): the window colours of an unlit and a lit pixel.
+/// The colours of a 1-bit OLED panel (the embedded-graphics simulator's themes of the
+/// same names, colour for colour).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Theme {
     OledBlue,
@@ -90,6 +71,9 @@ pub enum Theme {
 }
 
 impl Theme {
+    /// Every theme.
+    pub const ALL: [Theme; 2] = [Theme::OledBlue, Theme::OledWhite];
+
     /// The preview's `--theme` name.
     pub fn name(self) -> &'static str {
         match self {
@@ -98,20 +82,19 @@ impl Theme {
         }
     }
 
-    /// The theme named `name`.
-    pub fn parse(name: &str) -> Option<Theme> {
-        [Theme::OledBlue, Theme::OledWhite]
-            .into_iter()
-            .find(|t| t.name() == name)
+    /// The theme named `name`, if there is one.
+    pub fn from_name(name: &str) -> Option<Theme> {
+        Theme::ALL.into_iter().find(|t| t.name() == name)
     }
 
-    /// The window colour of a 1-bit display's pixel read back as `shown` (black: off).
-    pub fn window(self, shown: Rgb888) -> Rgb888 {
+    /// What a 1-bit pixel of colour `color` (black or white, as `BinaryColor` converts)
+    /// shows: black is dark, anything else lit.
+    pub fn show(self, color: Rgb888) -> Rgb888 {
         let (off, on) = match self {
             Theme::OledBlue => (Rgb888::new(0, 20, 40), Rgb888::new(0, 210, 255)),
             Theme::OledWhite => (Rgb888::new(20, 20, 20), Rgb888::WHITE),
         };
-        if shown == Rgb888::BLACK {
+        if color == Rgb888::BLACK {
             off
         } else {
             on

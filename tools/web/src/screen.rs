@@ -7,9 +7,9 @@
 //! the kernel is compiled for one colour type only: one render per scene type in the
 //! `.wasm`, not one per model.
 
-use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+use embedded_graphics::pixelcolor::{BinaryColor, Gray2, Gray4, Gray8, Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
-use embedded_raytracer::dither::Bayer;
+use embedded_raytracer::dither::{dither, Bayer};
 
 use crate::display::Model;
 
@@ -59,7 +59,7 @@ impl Screen {
             if let (Some(px), Some(sent), Some(&c)) =
                 (self.shown.get_mut(k), self.sent.get_mut(k), image.get(k))
             {
-                *px = self.model.shown(c, at, self.bayer);
+                *px = show(self.model, c, at, self.bayer);
                 *sent = true;
             }
         }
@@ -83,5 +83,25 @@ impl Screen {
     /// The display's resolution.
     pub fn size(&self) -> Size {
         self.size
+    }
+}
+
+/// The colour a display of `model` shows for the kernel's `color` at `at`, read back as
+/// `Rgb888` (before any OLED theme): what the firmware's `C::from(Rgb888)`, or the
+/// dither in front of a low-depth panel, writes, as embedded-graphics converts it back.
+///
+/// The shared display crate's `Panel` draws through a target of each model's colour
+/// type instead; the page converts pixel by pixel so that the kernel is compiled once.
+pub fn show(model: Model, color: Rgb888, at: Point, bayer: Bayer) -> Rgb888 {
+    match model {
+        Model::Rgb888 => color,
+        Model::Rgb565 => Rgb565::from(color).into(),
+        Model::Gray8 => Gray8::from(color).into(),
+        Model::Gray4 => Gray4::from(color).into(),
+        Model::Gray2 => Gray2::from(color).into(),
+        Model::Binary => BinaryColor::from(color).into(),
+        Model::Gray4Dither => dither::<Gray4>(color, at, bayer).into(),
+        Model::Gray2Dither => dither::<Gray2>(color, at, bayer).into(),
+        Model::BinaryDither => dither::<BinaryColor>(color, at, bayer).into(),
     }
 }

@@ -1,5 +1,7 @@
 //! What the page's pickers choose: everything that decides a frame's pixels besides the
-//! scene, and the orbit of the file's camera. The page sends it as one line of
+//! scene, and the orbit of the file's camera.
+//!
+//! The page sends it as one line of
 //! `key=value` pairs joined by `&` (the share link's view part, too).
 
 use embedded_graphics::geometry::Size;
@@ -68,7 +70,9 @@ impl Default for View {
 
 impl View {
     /// This view with the pairs of `spec` (`display=rgb565&size=240x240&…`) applied;
-    /// keys not given keep their value. Keys: `display`, `bayer` (4, 8), `theme`,
+    /// keys not given keep their value.
+    ///
+    /// Keys: `display`, `bayer` (4, 8), `theme`,
     /// `method` (`[integer/]stepping/sphere-test/sqrt`), `sampling`, `secondary`
     /// (`convex`, `epsilon:E`), `size` (`WxH`, or `file`), `azimuth` and `elevation`
     /// (radians from the file's camera), `zoom` (steps of 1.1, negative nearer), `diff`
@@ -80,7 +84,7 @@ impl View {
                 .ok_or_else(|| format!("`{pair}`: expected key=value"))?;
             let bad = |what: &str| format!("{key}: `{value}` is not {what}");
             match key {
-                "display" => self.model = Model::parse(value).ok_or_else(|| bad("a display model"))?,
+                "display" => self.model = Model::from_name(value).ok_or_else(|| bad("a display model"))?,
                 "bayer" => {
                     self.bayer = match value {
                         "4" => Bayer::Four,
@@ -88,7 +92,9 @@ impl View {
                         _ => return Err(bad("4 or 8")),
                     }
                 }
-                "theme" => self.theme = Theme::parse(value).ok_or_else(|| bad("oled-blue or oled-white"))?,
+                "theme" => {
+                    self.theme = Theme::from_name(value).ok_or_else(|| bad("oled-blue or oled-white"))?
+                }
                 "method" => self.method = value.parse().map_err(|e| format!("{key}: {e}"))?,
                 "sampling" => self.sampling = value.parse().map_err(|e| format!("{key}: {e}"))?,
                 "secondary" => self.secondary = parse_secondary(value).ok_or_else(|| bad("an origin"))?,

@@ -64,6 +64,10 @@ const state = {
   scale: 'auto',
   error: null,
   lastReport: null,
+  /// The last frame's marks: per pixel 1 traced, 2 sent (`Player::marks`).
+  marks: null,
+  /// Frames abandoned for an edit.
+  cancelled: 0,
 };
 
 // ---------------------------------------------------------------- the worker
@@ -208,8 +212,9 @@ function paint({ report, rgba, marks, ms, differing }) {
     }
     applyScale();
   }
-  ctx.putImageData(new ImageData(new Uint8ClampedArray(rgba.buffer), width, height), 0, 0);
-  paintMarks(marks, width, height);
+  ctx.putImageData(new ImageData(new Uint8ClampedArray(rgba.buffer, rgba.byteOffset, rgba.length), width, height), 0, 0);
+  state.marks = marks;
+  paintMarks();
   state.lastReport = { ...report, ms, differing };
   const now = performance.now();
   state.shown.push(now);
@@ -219,8 +224,9 @@ function paint({ report, rgba, marks, ms, differing }) {
 
 /// The overlay of a frame of a scene that moves: pixels traced but not sent in
 /// translucent yellow, pixels sent in translucent red.
-function paintMarks(marks, width, height) {
-  const image = octx.createImageData(width, height);
+function paintMarks() {
+  const marks = state.marks ?? [];
+  const image = octx.createImageData(overlay.width, overlay.height);
   if ($('marks').checked && state.info?.moves) {
     const d = image.data;
     for (let k = 0; k < marks.length; k++) {
@@ -327,13 +333,19 @@ textArea.addEventListener('input', () => {
   $('scene').value = '';
   renderGutter();
   clearTimeout(editTimer);
-  editTimer = setTimeout(() => {
-    editTimer = null;
-    // The frame being drawn is of the old text: abandon it.
-    if (busy) cancel();
-    request();
-  }, EDIT_DELAY_MS);
+  editTimer = setTimeout(textChanged, EDIT_DELAY_MS);
 });
+
+/// Draws the edited text; the frame being drawn is of the old text: it is abandoned.
+function textChanged() {
+  clearTimeout(editTimer);
+  editTimer = null;
+  if (busy) {
+    cancel();
+    state.cancelled++;
+  }
+  request();
+}
 textArea.addEventListener('scroll', () => { gutter.scrollTop = textArea.scrollTop; });
 
 // ---------------------------------------------------------------- the clock
@@ -430,7 +442,7 @@ for (const [id, key] of Object.entries(PICKERS)) {
 }
 $('integer').addEventListener('change', (e) => { view.integer = e.target.checked; $('board').value = ''; changed(); });
 $('diff').addEventListener('change', (e) => { view.diff = e.target.checked; changed(); });
-$('marks').addEventListener('change', () => request());
+$('marks').addEventListener('change', paintMarks);
 $('scale').addEventListener('change', (e) => { state.scale = e.target.value; applyScale(); });
 
 $('board').addEventListener('change', (e) => {
@@ -450,6 +462,7 @@ $('scene').addEventListener('change', (e) => {
 
 function loadScene(text) {
   setText(text);
+  Object.assign(view, { azimuth: 0, elevation: 0, zoom: 0 });
   state.frame = 0;
   state.info = null;
   if (busy) cancel();
@@ -497,6 +510,8 @@ stage.addEventListener('wheel', (e) => {
 
 document.addEventListener('keydown', (e) => {
   if (e.target === textArea || e.target.tagName === 'SELECT' || e.ctrlKey || e.metaKey || e.altKey) return;
+  // A focused button takes Space and Enter itself.
+  if (e.target.tagName === 'BUTTON' && (e.key === ' ' || e.key === 'Enter')) return;
   const keys = {
     ArrowLeft: () => orbit(-ORBIT_STEP, 0),
     ArrowRight: () => orbit(ORBIT_STEP, 0),
@@ -648,6 +663,8 @@ $('share').addEventListener('click', shareLink);
 /// PNG export's bytes.
 window.ertrace = {
   whenIdle,
+  /// An edit drawn now, not after the quiet time.
+  textChanged,
   show(frame) {
     play(false);
     state.frame = frame;

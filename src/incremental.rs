@@ -51,7 +51,9 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
-use crate::camera::span::{IntCut, Margin, Silhouette, ViewCone};
+use crate::camera::cone::ViewCone;
+use crate::camera::int_cut::IntCut;
+use crate::camera::span::{Margin, Silhouette};
 use crate::camera::{Camera, CameraParams};
 use crate::error::{BandError, FrameError};
 use crate::math::vec3::Vec3;

@@ -72,7 +72,8 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::{Vec, VecView};
 
-use crate::camera::span::{IntCut, Margin, Silhouette};
+use crate::camera::int_cut::IntCut;
+use crate::camera::span::{Margin, Silhouette};
 use crate::camera::Camera;
 use crate::math::vec3::Vec3;
 use crate::math::wide::{div_q16, isqrt, mul_i32_wide, mul_i64_wide, mul_wide, shr_u64_low, ARMV6M};

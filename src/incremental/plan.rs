@@ -4,7 +4,8 @@
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
-use crate::camera::span::{Margin, Silhouette, ViewCone};
+use crate::camera::cone::ViewCone;
+use crate::camera::span::{Margin, Silhouette};
 use crate::camera::Camera;
 use crate::error::FrameError;
 use crate::math::SqrtFn;

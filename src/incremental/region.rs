@@ -5,7 +5,8 @@
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
-use crate::camera::span::{IntCut, Silhouette};
+use crate::camera::int_cut::IntCut;
+use crate::camera::span::Silhouette;
 
 use super::Changes;
 

@@ -25,7 +25,7 @@ fn main() {
 }
 
 /// The anti-aliasing's sRGB tables (IEC 61966-2-1), written to `OUT_DIR/srgb_tables.rs`
-/// for `src/sampling/mod.rs`: 8-bit level to linear light (`round(65535·L)`), and the 255
+/// for `src/sampling/average.rs`: 8-bit level to linear light (`round(65535·L)`), and the 255
 /// linear thresholds between neighbouring levels (`round(16·65535·L((k + ½)/255))`),
 /// where the encoded value is exactly `k + ½` (rounding to nearest once).
 fn srgb_tables() {

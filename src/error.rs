@@ -1,5 +1,5 @@
-//! Error types. Every constructor that takes run-time values returns one of these
-//! instead of panicking or letting a NaN through.
+//! The typed errors every constructor that takes run-time values returns, instead of
+//! panicking or letting a NaN through.
 
 use core::fmt;
 
@@ -50,8 +50,9 @@ pub enum CameraError {
     /// A field of view is not in `(0, MAX_FOV]` (see [`MAX_FOV`](crate::camera::MAX_FOV)).
     FovOutOfRange(CameraParam),
     /// A field of view is so narrow that a pixel step is smaller than
-    /// [`MIN_PIXEL_SIZE`](crate::camera::MIN_PIXEL_SIZE) on the image plane, where f32 can
-    /// no longer tell neighbouring pixels' rays apart reliably.
+    /// [`MIN_PIXEL_SIZE`](crate::camera::MIN_PIXEL_SIZE) on the image plane.
+    ///
+    /// Below that step `f32` can no longer tell neighbouring pixels' rays apart reliably.
     FovTooNarrow(CameraParam),
     /// Width or height is zero.
     ZeroResolution,
@@ -343,8 +344,10 @@ impl fmt::Display for SceneError {
 impl core::error::Error for SceneError {}
 
 /// An object of a scene, as a [`FrameError`] names it: its index among the scene's
-/// spheres, planes or lights (the order they were pushed, the order of a scene file's
-/// `[[sphere]]`, `[[plane]]` and `[[light]]` tables).
+/// spheres, planes or lights.
+///
+/// The index is the order they were pushed, the order of a scene file's `[[sphere]]`,
+/// `[[plane]]` and `[[light]]` tables.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
@@ -367,8 +370,9 @@ impl fmt::Display for ObjectRef {
     }
 }
 
-/// Why a frame cannot be drawn exactly in `f32`: what
-/// [`Render::check`](crate::Render::check) returns, and
+/// Why a frame cannot be drawn exactly in `f32`.
+///
+/// [`Render::check`](crate::Render::check) returns it, and
 /// [`Render::draw_band`](crate::Render::draw_band) as [`BandError::Frame`]. Such a frame
 /// is not drawn: [`Drawable::draw`](embedded_graphics::Drawable::draw) leaves the
 /// target as it was, rather than draw a wrong picture.
@@ -376,12 +380,14 @@ impl fmt::Display for ObjectRef {
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum FrameError {
-    /// No one power of two brings both objects' sizes — each its largest coordinate
-    /// relative to the eye or its radius — into the range a frame computes exactly in,
-    /// `[2⁻⁴⁰, 2⁵⁰)`: `far` is more than about 2⁹⁰ (10²⁷) times `near`, or beyond `f32`
-    /// (its coordinates ±10³⁸ from the eye's). An object the
-    /// frame can prove no ray meets does not count (a sphere outside the view of a
-    /// scene without lights, planes or mirrors, with one ray a pixel).
+    /// No one power of two brings both objects' sizes into the range a frame computes
+    /// exactly in, `[2⁻⁴⁰, 2⁵⁰)`.
+    ///
+    /// An object's size is its largest coordinate relative to the eye or its radius:
+    /// `far` is more than about 2⁹⁰ (10²⁷) times `near`, or beyond `f32` (its
+    /// coordinates ±10³⁸ from the eye's). An object the frame can prove no ray meets does
+    /// not count (a sphere outside the view of a scene without lights, planes or mirrors,
+    /// with one ray a pixel).
     Magnitudes {
         /// The object of the largest size.
         far: ObjectRef,
@@ -453,10 +459,11 @@ impl core::error::Error for BandError {}
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum IntegerError<E> {
-    /// The integer kernel does not take this frame: its per-frame rule (see
-    /// [`Arithmetic::Integer`](crate::Arithmetic::Integer)) does not hold for the scene
-    /// and camera, the scene has lights, planes or mirrors, or the sampling is not
-    /// [`Sampling::Center`](crate::Sampling::Center). Nothing was drawn.
+    /// The integer kernel does not take this frame, and nothing was drawn.
+    ///
+    /// Its per-frame rule (see [`Arithmetic::Integer`](crate::Arithmetic::Integer)) does
+    /// not hold for the scene and camera, the scene has lights, planes or mirrors, or the
+    /// sampling is not [`Sampling::Center`](crate::Sampling::Center).
     Refused,
     /// The draw target's own error; for a band, why the band cannot be drawn
     /// ([`BandError`]).

@@ -1,10 +1,12 @@
 //! # embedded-raytracer
 //!
-//! A `no_std`, allocation-free ray-tracing kernel: spheres — and, where the scene's
-//! type asks for them, lights with hard shadows, checkered planes and mirrors — seen by
-//! a pin-hole camera, streamed scanline by scanline into any embedded-graphics
-//! [`DrawTarget`](embedded_graphics::draw_target::DrawTarget): an SPI LCD driver, the
-//! desktop simulator, a test's `MockDisplay`. No framebuffer, no allocation, no panic.
+//! A `no_std`, allocation-free ray-tracing kernel that streams what a pin-hole camera
+//! sees, scanline by scanline, into any embedded-graphics
+//! [`DrawTarget`](embedded_graphics::draw_target::DrawTarget).
+//!
+//! The scene is spheres (and, where the scene's type asks for them, lights with hard
+//! shadows, checkered planes and mirrors); the target an SPI LCD driver, the desktop
+//! simulator, a test's `MockDisplay`. No framebuffer, no allocation, no panic.
 //!
 //! ## One frame
 //!
@@ -50,9 +52,11 @@
 //!
 //! Right-handed world coordinates; angles in radians (degrees only in scene-file
 //! fields named `_deg`); `f32` throughout, with every approximation's error bound in
-//! its doc comment. The camera is the seed's: `w` toward the look-at point,
+//! its doc comment. The formulas are those of *the lecture notes*, the ray-tracing
+//! lecture notes this crate implements ([their terms](#terms-from-the-lecture-notes)).
+//! The camera is the lecture notes': `w` toward the look-at point,
 //! `u = normalize(w × up)`, `v = u × w`, image plane at distance 1, column `i` left to
-//! right and row `j` top to bottom. Shading is the seed's Lab #1,
+//! right and row `j` top to bottom. Shading is the lecture notes' Lab #1,
 //! `colour × clamp(n·(−w), 0.3, 1)`. The same scene and method give bit-identical
 //! pixels on every target (IEEE-754 `f32`, no fused multiply-add, the same libm).
 //! Constructors that take run-time values return typed errors; the const ones
@@ -152,8 +156,8 @@ mod render; // `Render`: the public renderer, where the method is matched
 mod sampling; // anti-aliasing: one ray per pixel, grids, adaptive
 mod scene; // the scene and its objects: spheres, planes, lights, materials
 #[cfg(host_std)]
-pub mod scene_file;
-mod trace; // per frame, per row, per pixel: options, frame constants, scanline loop, shading, features // TOML scene files
+pub mod scene_file; // TOML scene files
+mod trace; // per frame, per row, per pixel: options, frame constants, scanline loop, shading, features
 
 pub use output::dither;
 pub use trace::shade;
@@ -179,9 +183,10 @@ pub use scene::sphere::Sphere;
 pub use scene::{Hit, Scene, Settings, MAX_DEPTH};
 pub use trace::options::{Options, Sample, SecondaryOrigin};
 
-/// What the one-frame loop needs, in one `use`: the scene and its objects, the camera,
-/// the renderer, the method and sampling choices, and embedded-graphics' own prelude
-/// (`DrawTarget`, `Size`, `Point`, …).
+/// What the one-frame loop needs, in one `use`.
+///
+/// It holds the scene and its objects, the camera, the renderer, the method and sampling
+/// choices, and embedded-graphics' own prelude (`DrawTarget`, `Size`, `Point`, …).
 ///
 /// ```
 /// use embedded_raytracer::prelude::*;

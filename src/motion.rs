@@ -69,8 +69,9 @@ use crate::scene::Scene;
 /// The frame rate an animation has unless it says otherwise (frames a second).
 pub const DEFAULT_FPS: f32 = 25.0;
 
-/// The moment of frame `frame` at `fps` frames a second, in seconds: `frame / fps`
-/// (one `f32` division, the same bits on every target). Frame 0 is `t = 0`.
+/// The moment of frame `frame` at `fps` frames a second, in seconds: `frame / fps`.
+///
+/// One `f32` division, the same bits on every target. Frame 0 is `t = 0`.
 ///
 /// ```
 /// use embedded_raytracer::motion::frame_time;
@@ -83,19 +84,21 @@ pub const fn frame_time(frame: u32, fps: f32) -> f32 {
 }
 
 /// The phase of `t` in a motion of period `period`, offset by `phase` periods:
-/// `s = frac(t / period + phase)`, in `[0, 1]` (1 only where rounding lifts a value
-/// just below a whole number to it, which every motion draws as 0).
+/// `s = frac(t / period + phase)`.
+///
+/// It lies in `[0, 1]` (1 only where rounding lifts a value just below a whole number
+/// to it, which every motion draws as 0).
 fn phase_of(t: f32, period: f32, phase: f32) -> f32 {
     let q = t / period + phase;
     q - libm::floorf(q)
 }
 
-/// A sphere circling a point in the horizontal plane through it (`y = center.y`):
-/// at phase `s` of its period it is at
-/// `center + radius·(sin 2πs, 0, cos 2πs)` — at `s = 0` on the `+z` side of the
-/// centre, a quarter period later on the `+x` side (the sense of
-/// [`CameraParams::orbited`]). The sphere's own centre in the base scene is not used;
-/// its radius, colour and material are kept.
+/// A sphere circling a point in the horizontal plane through it (`y = center.y`).
+///
+/// At phase `s` of its period it is at `center + radius·(sin 2πs, 0, cos 2πs)` — at
+/// `s = 0` on the `+z` side of the centre, a quarter period later on the `+x` side (the
+/// sense of [`CameraParams::orbited`]). The sphere's own centre in the base scene is not
+/// used; its radius, colour and material are kept.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Circle {
@@ -138,10 +141,11 @@ impl Circle {
     }
 }
 
-/// A sphere bouncing: its height above its base position is a parabola in time,
-/// `y = y₀ + height·4·s·(1 − s)` with `s = frac(t / period)` (no trigonometry): on its
-/// base position at `t = 0` and every `period` seconds, `height` above it half a period
-/// later. `y₀` is the sphere's `y` as the motions before this one left it (the base
+/// A sphere bouncing: its height above its base position is a parabola in time.
+///
+/// It is `y = y₀ + height·4·s·(1 − s)` with `s = frac(t / period)` (no trigonometry): on
+/// its base position at `t = 0` and every `period` seconds, `height` above it half a
+/// period later. `y₀` is the sphere's `y` as the motions before this one left it (the base
 /// scene's, if none moved it); `x`, `z`, the radius and the colours are kept. A ball
 /// resting on a floor (`y₀` = radius above it) touches the floor at every bounce.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -175,10 +179,11 @@ impl Bounce {
     }
 }
 
-/// The camera orbiting the point it looks at, once every `period` seconds:
-/// [`CameraParams::orbited`]`(2π·frac(t / period))` — about the line through `look_at`
-/// along `up`, keeping height and distance, from `+z` towards `+x` for a camera on the
-/// `+z` side.
+/// The camera orbiting the point it looks at, once every `period` seconds.
+///
+/// At moment `t` the camera is [`CameraParams::orbited`]`(2π·frac(t / period))` — about
+/// the line through `look_at` along `up`, keeping height and distance, from `+z` towards
+/// `+x` for a camera on the `+z` side.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Orbit {
@@ -235,6 +240,7 @@ impl Motion {
     }
 
     /// The motion if its numbers are usable: every number finite, the period `> 0`.
+    ///
     /// `index` is the motion's place in its animation, for the error.
     pub const fn check(self, index: usize) -> Result<Self, MotionError> {
         let period = self.period();
@@ -385,7 +391,9 @@ impl<const M: usize> Animation<M> {
     }
 
     /// The motions of an array of `K ≤ M` (a compile-time error otherwise), usable in
-    /// a `const` or `static`; [`DEFAULT_FPS`] and one loop of the longest period
+    /// a `const` or `static`.
+    ///
+    /// Its frame rate is [`DEFAULT_FPS`] and its frames one loop of the longest period
     /// ([`frames_for`](Self::frames_for)). Unchecked: [`check`](Self::check).
     #[must_use]
     pub const fn from_array<const K: usize>(motions: [Motion; K]) -> Self {
@@ -506,9 +514,10 @@ impl<const M: usize> Animation<M> {
         Ok(())
     }
 
-    /// The scene and camera at moment `t` (seconds): `scene` becomes a copy of `base`
-    /// and `params` of `base_params`, then each motion moves its sphere or the camera,
-    /// in order. Nothing of an earlier frame is used.
+    /// The scene and camera at moment `t` (seconds).
+    ///
+    /// `scene` becomes a copy of `base` and `params` of `base_params`, then each motion
+    /// moves its sphere or the camera, in order. Nothing of an earlier frame is used.
     ///
     /// # Errors
     ///

@@ -1,12 +1,13 @@
-//! The public renderer: a [`Render`] is an embedded-graphics [`Drawable`] that traces
-//! one scanline at a time straight into the target — one `fill_contiguous` per row, the
-//! colours produced by an iterator while the driver consumes them. No framebuffer, no
-//! row buffer, no allocation.
+//! The public renderer, [`Render`]: an embedded-graphics [`Drawable`] that traces one
+//! scanline at a time straight into the target.
+//!
+//! It sends one `fill_contiguous` per row, the colours produced by an iterator while the
+//! driver consumes them: no framebuffer, no row buffer, no allocation.
 //!
 //! Drawing is the pipeline of the crate docs: the [`Method`] is matched once per frame
-//! (`method/dispatch.rs`), the frame's constants are built (`trace/frame.rs`), and the scanline loop
-//! (`trace/scanline.rs`) feeds the rows to a sink (`output/sink.rs`): the target for
-//! [`Drawable::draw`], a callback for [`Render::trace`].
+//! (`method/dispatch.rs`), the frame's constants are built (`trace/frame.rs`), and the
+//! scanline loop (`trace/scanline.rs`) feeds the rows to a sink (`output/sink.rs`): the
+//! target for [`Drawable::draw`], a callback for [`Render::trace`].
 
 use core::marker::PhantomData;
 
@@ -89,7 +90,7 @@ impl<'a, const N: usize, C, const L: usize, const P: usize, const D: usize> Rend
     }
 
     /// The same render placed with its upper-left pixel at `offset` on the target (for
-    /// a sub-rectangle of a larger display). Pixels outside the target are clipped.
+    /// a sub-rectangle of a larger display), clipped to the target.
     #[must_use]
     pub const fn with_offset(mut self, offset: Point) -> Self {
         self.offset = offset;
@@ -104,10 +105,12 @@ impl<'a, const N: usize, C, const L: usize, const P: usize, const D: usize> Rend
     }
 
     /// The same render with `sampling` rays per pixel (default [`Sampling::Center`]:
-    /// one, through the centre): a grid of sub-pixel rays averaged in linear light,
-    /// everywhere or only where an edge can cross the pixel. Matched once per frame;
-    /// see [`Sampling`]. A field of the render, not of [`Options`], so that a
-    /// render that never sets it links none of it, whatever its options.
+    /// one, through the centre).
+    ///
+    /// A grid of sub-pixel rays averaged in linear light, everywhere or only where an
+    /// edge can cross the pixel. Matched once per frame; see [`Sampling`]. A field of the
+    /// render, not of [`Options`], so that a render that never sets it links none of it,
+    /// whatever its options.
     ///
     /// ```
     /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::{Rgb565, Rgb888}, prelude::*};
@@ -165,7 +168,9 @@ impl<'a, const N: usize, C, const L: usize, const P: usize, const D: usize> Rend
 
     /// Traces every pixel of the image in row-major order, through exactly the same
     /// monomorphised loop as [`Drawable::draw`], and hands each [`Sample`] (direction,
-    /// hit, colour) to `f`. For tests, accuracy measurements and custom sinks.
+    /// hit, colour) to `f`.
+    ///
+    /// For tests, accuracy measurements and custom sinks.
     pub fn trace(&self, mut f: impl FnMut(Sample)) {
         let full = Rectangle::new(Point::zero(), self.camera.size());
         let mut sink = TraceSink(&mut f);
@@ -177,10 +182,12 @@ impl<const N: usize, C: PixelColor + From<Rgb888>, const L: usize, const P: usiz
     Render<'_, N, C, L, P, D>
 {
     /// Traces rows `rows` (`j0..j1`) of the image into `buf`, row-major, one image row
-    /// (`width` pixels) after another: no `DrawTarget`, no allocation. The pixels are
-    /// the whole render's, bit for bit, for every method (a pixel never depends on the
-    /// band or clip it is drawn in), so firmware can hand one band to DMA while it
-    /// traces the next. The render's offset does not apply (rows are the image's).
+    /// (`width` pixels) after another.
+    ///
+    /// No `DrawTarget`, no allocation. The pixels are the whole render's, bit for bit,
+    /// for every method (a pixel never depends on the band or clip it is drawn in), so
+    /// firmware can hand one band to DMA while it traces the next. The render's offset
+    /// does not apply (rows are the image's).
     ///
     /// ```
     /// use embedded_graphics::{pixelcolor::{Rgb565, Rgb888}, prelude::*};
@@ -221,10 +228,11 @@ impl<const N: usize, C: PixelColor + From<Rgb888>, const L: usize, const P: usiz
     }
 
     /// [`Render::draw_band`] with the integer kernel alone, as [`Render::draw_integer`]
-    /// draws a frame: the band's pixels are those of `draw_band` with
-    /// [`Method::INTEGER`] wherever the kernel's per-frame rule takes the frame, and no
-    /// `f32` render is linked. Where the rule does not take it, nothing is traced and
-    /// `buf` keeps what it held.
+    /// draws a frame.
+    ///
+    /// The band's pixels are those of `draw_band` with [`Method::INTEGER`] wherever the
+    /// kernel's per-frame rule takes the frame, and no `f32` render is linked. Where the
+    /// rule does not take it, nothing is traced and `buf` keeps what it held.
     ///
     /// ```
     /// use embedded_graphics::{pixelcolor::{Rgb565, Rgb888}, prelude::*};
@@ -314,10 +322,12 @@ impl<const N: usize, C: PixelColor + From<Rgb888>, const L: usize, const P: usiz
     }
 
     /// Draws the frame with the integer kernel alone, whatever the render's method, or
-    /// draws nothing and returns [`IntegerError::Refused`] where the kernel's per-frame
-    /// rule does not take it (see [`Arithmetic::Integer`]; as [`Render::arithmetic`]
-    /// would answer `F32`). The pixels are those of [`Drawable::draw`] with
-    /// [`Method::INTEGER`] wherever the rule holds.
+    /// nothing where the kernel's per-frame rule does not take it.
+    ///
+    /// Where the rule does not take the frame (see [`Arithmetic::Integer`]; as
+    /// [`Render::arithmetic`] would answer `F32`) it returns [`IntegerError::Refused`].
+    /// The pixels are those of [`Drawable::draw`] with [`Method::INTEGER`] wherever the
+    /// rule holds.
     ///
     /// For firmware on a chip without an FPU that must stay small: no `f32` render is
     /// linked (`draw` with `Method::INTEGER` links the `f32` method as its fallback), so
@@ -414,10 +424,11 @@ where
 }
 
 impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'_, N, C, L, P, D> {
-    /// The arithmetic a whole-image frame of this render uses: the integer kernel where
-    /// the method asks for it, the sampling is [`Sampling::Center`] (sub-pixel rays are
-    /// traced in `f32`) and its per-frame rule admits the scene and camera (see
-    /// [`Arithmetic::Integer`]), `F32` otherwise.
+    /// The arithmetic a whole-image frame of this render uses.
+    ///
+    /// It is the integer kernel where the method asks for it, the sampling is
+    /// [`Sampling::Center`] (sub-pixel rays are traced in `f32`) and its per-frame rule
+    /// admits the scene and camera (see [`Arithmetic::Integer`]), `F32` otherwise.
     #[must_use]
     pub fn arithmetic(&self) -> Arithmetic {
         let full = Rectangle::new(Point::zero(), self.camera.size());
@@ -440,11 +451,13 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
         }
     }
 
-    /// Whether the frame can be drawn exactly, decided as a draw decides it (once per
-    /// frame, from the scene, camera, method, options and sampling; no pixel is
-    /// traced): `Err` where [`Drawable::draw`] would leave the target as it was and
-    /// [`Render::draw_band`] return [`BandError::Frame`], rather than draw a wrong
-    /// picture — objects whose sizes no one `f32` frame can hold (see [`FrameError`]).
+    /// Whether the frame can be drawn exactly, decided as a draw decides it.
+    ///
+    /// The decision is made once per frame, from the scene, camera, method, options and
+    /// sampling; no pixel is traced. `Err` where [`Drawable::draw`] would leave the
+    /// target as it was and [`Render::draw_band`] return [`BandError::Frame`], rather
+    /// than draw a wrong picture — objects whose sizes no one `f32` frame can hold (see
+    /// [`FrameError`]).
     ///
     /// ```
     /// use embedded_graphics::pixelcolor::Rgb888;
@@ -507,11 +520,12 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
         self.render_clips(core::iter::once(clip), offset, sink)
     }
 
-    /// [`Self::render`] for each of `clips` in turn, as one frame: the frame's per-frame
-    /// work (scale, silhouettes, shadow regions, ties, the integer kernel's rule and
-    /// quantisation) is done once for all of them, except with adaptive sampling (whose
-    /// rows hold their clip: a frame each). Each clip's pixels are those of its own
-    /// render.
+    /// [`Self::render`] for each of `clips` in turn, as one frame.
+    ///
+    /// The frame's per-frame work (scale, silhouettes, shadow regions, ties, the integer
+    /// kernel's rule and quantisation) is done once for all of them, except with adaptive
+    /// sampling (whose rows hold their clip: a frame each). Each clip's pixels are those
+    /// of its own render.
     #[inline(always)]
     pub(crate) fn render_clips<K: RowSink, I: Iterator<Item = Rectangle> + Clone>(
         &self,

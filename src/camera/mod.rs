@@ -1,4 +1,4 @@
-//! The seed's pin-hole camera: the u/v/w basis, pixel size from the field of view, the
+//! The lecture notes' pin-hole camera: the u/v/w basis, pixel size from the field of view, the
 //! upper-left pixel centre and the per-pixel and per-scanline steps.
 //!
 //! Conventions: right-handed world, angles in radians, image plane one unit in front
@@ -8,6 +8,8 @@
 //! p(i,j) − eye = w + ((i + ½) − W/2)·pw·u + (H/2 − (j + ½))·ph·v
 //! ```
 
+pub(crate) mod cone;
+pub(crate) mod int_cut;
 pub(crate) mod span;
 
 use embedded_graphics::geometry::Size;
@@ -88,9 +90,10 @@ impl CameraParams {
     }
 
     /// The same parameters with the eye turned by `angle` radians about the line
-    /// through `look_at` along `up` (counter-clockwise seen from above): the camera
-    /// orbits the point it looks at, keeping its height and distance. Two sines and
-    /// a handful of products (`libm`, so every target computes the same bits); cheap
+    /// through `look_at` along `up` (counter-clockwise seen from above).
+    ///
+    /// The camera orbits the point it looks at, keeping its height and distance. Two
+    /// sines and a handful of products (`libm`, so every target computes the same bits); cheap
     /// enough for every frame on a chip without an FPU. A non-finite angle, or an `up`
     /// that is zero, makes a non-finite eye, which [`build`](Self::build) refuses.
     ///
@@ -118,7 +121,7 @@ impl CameraParams {
         self.with_eye(self.look_at + rotated)
     }
 
-    /// Validates the parameters and computes the seed's camera set-up: the one way a
+    /// Validates the parameters and computes the lecture notes' camera set-up: the one way a
     /// [`Camera`] is made ([`Camera::new`] is this with square pixels).
     ///
     /// Errors: any non-finite number ([`CameraError::NotFinite`]); eye = look-at;
@@ -148,7 +151,8 @@ pub struct Camera {
     dv: Vec3,
     /// `p(0,0) − eye`, the camera-relative direction to the upper-left pixel centre.
     first: Vec3,
-    /// The seed's world-space upper-left pixel centre, evaluated as the slides write it.
+    /// The lecture notes' world-space upper-left pixel centre, evaluated as the slides
+    /// write it.
     upper_left_world: Vec3,
 }
 
@@ -320,13 +324,13 @@ impl Camera {
         self.first
     }
 
-    /// The seed's world-space upper-left pixel centre, as the slides compute it.
+    /// The lecture notes' world-space upper-left pixel centre, as the slides compute it.
     #[must_use]
     pub const fn upper_left_world(&self) -> Vec3 {
         self.upper_left_world
     }
 
-    /// `p(i,j) − eye` by the seed's direct formula (no stepping):
+    /// `p(i,j) − eye` by the lecture notes' direct formula (no stepping):
     /// `w + ((i + ½) − W/2)·pw·u + (H/2 − (j + ½))·ph·v`.
     #[must_use]
     pub fn direction(&self, i: u32, j: u32) -> Vec3 {
@@ -338,6 +342,7 @@ impl Camera {
 }
 
 /// The unit vector from `from` towards `to`; `None` only when they are the same point.
+///
 /// When `to − from` overflows (points ±3e38 apart), its halves do not.
 /// ([`Vec3::try_normalize`] itself handles any finite magnitude.)
 fn unit_direction(from: Vec3, to: Vec3) -> Option<Vec3> {

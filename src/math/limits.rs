@@ -1,5 +1,5 @@
-//! The numeric limits the constructors enforce (the camera's today), in one place that
-//! both the validation (`camera/mod.rs`) and the error messages (`error.rs`) read.
+//! The numeric limits the constructors enforce (the camera's), in one place that both
+//! the validation (`camera/mod.rs`) and the error messages (`error.rs`) read.
 
 use crate::math::{EDGE_TOLERANCE, UNIT_ROUNDOFF};
 
@@ -14,9 +14,10 @@ pub const MAX_FOV: f32 = 179.0 * core::f32::consts::PI / 180.0;
 /// A ray direction component of magnitude below 1 rounds by at most 2⁻²⁴; at this
 /// pixel size that is ≤ 1/16 px per rounding. Narrower fields of view (for the
 /// resolution) are refused with [`CameraError::FovTooNarrow`](crate::CameraError::FovTooNarrow). The bound is per
-/// rounding: `Stepping::Incremental` accumulates one per pixel along a row, and the
-/// accuracy lab measured 30 px of drift at 8192 wide for an oblique camera at this
-/// limit (`Direct`: under 0.05 px), so use `Direct` (the default) for narrow views.
+/// rounding: `Stepping::Incremental` accumulates one per pixel along a row, and at this
+/// limit, wide and with an oblique camera, drifts by many pixels where `Direct` stays
+/// within a fraction of one (`docs/accuracy.md` measures both), so use `Direct` (the
+/// default) for narrow views.
 pub const MIN_PIXEL_SIZE: f32 = UNIT_ROUNDOFF / EDGE_TOLERANCE;
 
 /// Smallest angle between `up` and the view direction, in radians (as `|ŵ × ûp|`).

@@ -26,18 +26,22 @@ pub mod vec3;
 pub(crate) mod wide;
 
 /// The unit roundoff of `f32`, `u = 2⁻²⁴`: one correctly rounded operation changes its
-/// exact result by at most `u` relative. Every rounding bound in the crate counts in it.
+/// exact result by at most `u` relative.
+///
+/// Every rounding bound in the crate counts in it.
 pub const UNIT_ROUNDOFF: f32 = 1.0 / 16_777_216.0;
 
 /// How far, in pixels, a method may move a silhouette edge and still be called exact:
-/// 1/16 pixel. It sets [`Auto`](crate::SphereTest::Auto)'s choice and the camera's
+/// 1/16 pixel.
+///
+/// It sets [`Auto`](crate::SphereTest::Auto)'s choice and the camera's
 /// [`MIN_PIXEL_SIZE`](crate::camera::MIN_PIXEL_SIZE) (`UNIT_ROUNDOFF / EDGE_TOLERANCE`).
 pub const EDGE_TOLERANCE: f32 = 1.0 / 16.0;
 
 /// Correctly rounded `f32` square root (IEEE-754 `sqrt`, ≤ 0.5 ulp).
 ///
 /// On hard-float ARM (`thumbv7em-none-eabihf`) this is the FPU's `VSQRT.F32`
-/// instruction; libm's `sqrtf` there is a ~55-instruction integer routine (libm's
+/// instruction; libm's `sqrtf` there is a loop of integer shifts and compares (libm's
 /// `arch` feature has no ARM version). Elsewhere it is `libm::sqrtf`. Both are
 /// correctly rounded, so the results are bit-identical on every target (the firmware
 /// example checks that in QEMU over millions of inputs).
@@ -107,6 +111,7 @@ pub fn sqrt_fast(x: f32) -> f32 {
 }
 
 /// `f32::max` inline: the larger of `a` and `b`, the other one where one is NaN.
+///
 /// The Cortex-M4's FPU has no `VMAXNM`, so `f32::max` is a call to `fmaxf`; per-row
 /// code that clamps many values uses this instead.
 #[must_use]
@@ -133,9 +138,9 @@ pub(crate) fn min(a: f32, b: f32) -> f32 {
 /// `tan(x)` for the camera's half field of view, `x ∈ [0, π/2)`, once per frame.
 ///
 /// Why not libm's `tanf`: its general argument reduction (`rem_pio2_large`) and the
-/// soft-float `f64` it computes in cost 10.8 KB of flash on a Cortex-M4F — two thirds
-/// of the whole render path (measured with `llvm-size`/`llvm-nm` on
-/// `lab/firmware/examples/no_panic.rs`). A field of view needs no reduction: on `[0, π/4]`,
+/// soft-float `f64` it computes in would take most of the render path's flash on a Cortex-M4F
+/// (`docs/firmware.md`, "Flash", measures it on `lab/firmware/examples/no_panic.rs`).
+/// A field of view needs no reduction: on `[0, π/4]`,
 /// `tan x = sin x / cos x` from Taylor polynomials (degree 9 and 10; truncation below
 /// 3e-9 relative), and on `(π/4, π/2)`, `tan x = cos y / sin y` with `y = π/2 − x`
 /// formed exactly (Sterbenz) from a two-part `π/2`, so the result stays accurate as

@@ -1,7 +1,8 @@
-//! Integer arithmetic the integer kernel and the silhouettes' integer cuts share: the
-//! exact `u32` square root, the Q16 division without a divide instruction, and the wide
-//! products and shifts, written out on ARMv6-M (Cortex-M0/M0+) without library calls —
-//! the same bits as the operators, which every other target uses.
+//! Integer arithmetic the integer kernel and the silhouettes' integer cuts share.
+//!
+//! The exact `u32` square root, the Q16 division without a divide instruction, and the
+//! wide products and shifts, written out on ARMv6-M (Cortex-M0/M0+) without library
+//! calls — the same bits as the operators, which every other target uses.
 
 /// `SQRT_TABLE[k] = ⌊√((k + 64)·2²⁴)⌋` (the last entry, `2¹⁶`, kept as `2¹⁶ − 1`):
 /// [`isqrt32`]'s estimate of `√n` at `n`'s top eight bits, `n >> 24` in `[64, 256)`
@@ -29,9 +30,11 @@ pub(crate) const SQRT_TABLE: [u16; 193] = {
     t
 };
 
-/// `⌊√v⌋` of a `u32`, exactly, in a few steps whatever `v` (the digit-by-digit root
-/// takes sixteen rounds of compare and subtract; on a Cortex-M0 about 200 instructions
-/// a hit): `v` normalised to `n = v·4ᵉ` in `[2³⁰, 2³²)`, `√n` estimated from
+/// `⌊√v⌋` of a `u32`, exactly, in a few steps whatever `v`.
+///
+/// The digit-by-digit root takes sixteen rounds of compare and subtract
+/// (`docs/firmware.md`, "The integer kernel", gives its cost on a Cortex-M0). Here `v` is
+/// normalised to `n = v·4ᵉ` in `[2³⁰, 2³²)`, `√n` estimated from
 /// [`SQRT_TABLE`] at `n`'s top eight bits, linearly interpolated on its next eight,
 /// `r = ⌊s/2ᵉ⌋`, then `r` counted up while `(r + 1)² ≤ v`.
 ///
@@ -80,7 +83,9 @@ pub(crate) fn isqrt32(v: u32) -> u32 {
 }
 
 /// An approximate `√v`: `v` shifted right by `2h`, its exact [`isqrt32`], shifted
-/// back, for `v < 2³²⁺²ʰ`. Error bound: `0 ≤ √v − isqrt(v, h) < 2^(h+1)`.
+/// back, for `v < 2³²⁺²ʰ`.
+///
+/// Error bound: `0 ≤ √v − isqrt(v, h) < 2^(h+1)`.
 #[inline(always)]
 pub(crate) fn isqrt(v: u128, h: u32) -> u64 {
     shl_u64(isqrt32(shr_u128_low(v, 2 * h)), h)
@@ -122,7 +127,9 @@ pub(crate) fn shl_u64(x: u32, s: u32) -> u64 {
     }
 }
 
-/// [`shr_u64_low`] from 32-bit words. `(hi << 1) << (31 − s)` is `hi << (32 − s)`
+/// [`shr_u64_low`] from 32-bit words.
+///
+/// `(hi << 1) << (31 − s)` is `hi << (32 − s)`
 /// without a shift by 32 at `s = 0` (where the high word contributes nothing).
 #[inline(always)]
 pub(crate) fn shr_u64_low_words(x: u64, s: u32) -> u32 {
@@ -178,9 +185,10 @@ pub(crate) fn mul_wide(x: u32, y: u32) -> u64 {
     }
 }
 
-/// [`mul_wide`] from 16-bit halves, exactly, for every `x`, `y`: the Cortex-M0's
-/// `MULS` keeps the low 32 bits of a product, and a `u64` multiply is a library call
-/// there (`__aeabi_lmul`, a full 64×64-bit product). With `x = x₁·2¹⁶ + x₀`,
+/// [`mul_wide`] from 16-bit halves, exactly, for every `x`, `y`.
+///
+/// The Cortex-M0's `MULS` keeps the low 32 bits of a product, and a `u64` multiply is a
+/// library call there (`__aeabi_lmul`, a full 64×64-bit product). With `x = x₁·2¹⁶ + x₀`,
 /// `y = y₁·2¹⁶ + y₀`, the four half products fit a `u32` each; the two cross products'
 /// sum carries into bit 48, and its low half added to the low word carries into the
 /// high word. Used on ARMv6-M only ([`ARMV6M`]): RV32 (`MULHU`) and the
@@ -208,7 +216,9 @@ pub(crate) fn mul_i32_wide(x: i32, y: i32) -> i64 {
 }
 
 /// [`mul_i32_wide`] from [`mul_wide_halves`] of the magnitudes, the sign applied
-/// after. Exact for every `x`, `y`: `|x·y| ≤ 2⁶²`.
+/// after.
+///
+/// Exact for every `x`, `y`: `|x·y| ≤ 2⁶²`.
 #[inline(always)]
 pub(crate) fn mul_i32_wide_halves(x: i32, y: i32) -> i64 {
     let p = mul_wide_halves(x.unsigned_abs(), y.unsigned_abs()) as i64;
@@ -233,6 +243,7 @@ pub(crate) fn mul_i64_wide(x: i64, y: i64) -> i128 {
 
 /// [`mul_i64_wide`] from four [`mul_wide_halves`] of the magnitudes' 32-bit halves
 /// (`x₁y₁·2⁶⁴ + (x₁y₀ + x₀y₁)·2³² + x₀y₀`, summed in `u128`), the sign applied after.
+///
 /// Exact for every `x`, `y`: `|x·y| ≤ 2¹²⁶`.
 #[inline(always)]
 pub(crate) fn mul_i64_wide_halves(x: i64, y: i64) -> i128 {
@@ -250,7 +261,9 @@ pub(crate) fn mul_i64_wide_halves(x: i64, y: i64) -> i128 {
 }
 
 /// Whether the target is ARMv6-M (Cortex-M0, M0+): no divide instruction, no
-/// 32×32→64-bit multiply, no 64-bit shifts but by library calls. Told apart by its
+/// 32×32→64-bit multiply, no 64-bit shifts but by library calls.
+///
+/// Told apart by its
 /// missing compare-and-swap atomics (ARMv7-M and ARMv8-M Baseline have both those
 /// and compare-and-swap). There [`div_q16`], the wide products ([`mul_wide`],
 /// [`mul_i32_wide`], [`mul_i64_wide`]) and the word-wise shifts replace the operators
@@ -312,3 +325,6 @@ pub(crate) fn div_q16(n: u32, d: u32) -> u32 {
     }
     q
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,7 +1,8 @@
-//! Ordered (Bayer) dithering for low-depth displays: a [`DrawTarget`] adapter that takes
-//! the shaded [`Rgb888`] stream and writes [`BinaryColor`], [`Gray2`] or [`Gray4`] to the
-//! display, so a 1-bit SSD1306 shows the spheres' shading as a dot density instead of a
-//! hard threshold.
+//! Ordered (Bayer) dithering for low-depth displays, as a [`DrawTarget`] adapter.
+//!
+//! The adapter takes the shaded [`Rgb888`] stream and writes [`BinaryColor`], [`Gray2`]
+//! or [`Gray4`] to the display, so a 1-bit SSD1306 shows the spheres' shading as a dot
+//! density instead of a hard threshold.
 //!
 //! The adapter sits between the render and the driver and keeps no state between
 //! pixels: every pixel's output depends only on its colour and its position on the
@@ -164,7 +165,9 @@ impl Bayer {
     }
 
     /// The integer threshold at target position `(x, y)`: level `q + 1` when
-    /// `r > threshold`. It is `⌊255·(2b + 1) / (2c)⌋`, exact because `r` is an integer
+    /// `r > threshold`.
+    ///
+    /// It is `⌊255·(2b + 1) / (2c)⌋`, exact because `r` is an integer
     /// (`r > X/(2c) ⇔ r > ⌊X/(2c)⌋`), so the table lookup is the rule of step 3.
     ///
     /// ```
@@ -265,8 +268,10 @@ pub fn dither<C: DitherColor>(color: Rgb888, point: Point, matrix: Bayer) -> C {
 }
 
 /// A [`DrawTarget`] with `Rgb888` colour that dithers every pixel into the wrapped
-/// low-depth target. Made by [`DitherExt::dithered`]; see the [module docs](self) for
-/// the quantisation and its error bound.
+/// low-depth target.
+///
+/// Made by [`DitherExt::dithered`]; see the [module docs](self) for the quantisation and
+/// its error bound.
 ///
 /// Every call is forwarded one to one (`fill_contiguous` → `fill_contiguous`,
 /// `draw_iter` → `draw_iter`) with the same area and the same number of pixels, so each

@@ -1,5 +1,7 @@
-//! Lights: directional (the sun) or point. A scene holds up to `L` of them
-//! (`Scene<N, L, …>`); with none, shading is the seed's Lab #1 headlight.
+//! Lights: directional (the sun) or point.
+//!
+//! A scene holds up to `L` of them (`Scene<N, L, …>`); with none, shading is the
+//! lecture notes' Lab #1 headlight.
 
 use crate::error::LightError;
 use crate::math::vec3::Vec3;

@@ -1,5 +1,7 @@
 //! Surface materials: how a sphere or plane answers light (specular highlight) and
-//! mirrors (reflection). Only scenes with lights read `specular` and `shininess`; only
+//! mirrors (reflection).
+//!
+//! Only scenes with lights read `specular` and `shininess`; only
 //! scene types with a reflection depth (`Scene<N, L, P, D>`, `D ≥ 1`) read `reflect`.
 
 use crate::error::MaterialError;
@@ -42,7 +44,9 @@ impl Material {
     }
 
     /// The material if every field is in range: `specular` and `reflect` in `[0, 1]`,
-    /// `shininess` finite and `≥ 1`. NaN is out of every range.
+    /// `shininess` finite and `≥ 1`.
+    ///
+    /// NaN is out of every range.
     pub const fn check(self) -> Result<Self, MaterialError> {
         if !(self.specular >= 0.0 && self.specular <= 1.0) {
             return Err(MaterialError::Specular);

@@ -32,10 +32,13 @@ pub const MAX_DEPTH: u8 = 8;
 #[non_exhaustive]
 pub struct Settings {
     /// Light every lit surface gets regardless of the lights, `0 … 1` (default 0.1).
+    ///
     /// Not used without lights (Lab #1 has its own 0.3 floor).
     pub ambient: f32,
     /// How many times a ray may be reflected (default 2; at most the scene type's `D`
-    /// and [`MAX_DEPTH`]). At this depth a mirror shows the background colour.
+    /// and [`MAX_DEPTH`]).
+    ///
+    /// At this depth a mirror shows the background colour.
     pub max_depth: u8,
     /// Whether lights cast shadows (default true).
     pub shadows: bool,
@@ -89,10 +92,12 @@ impl Default for Settings {
 }
 
 /// Up to `N` spheres, `L` lights and `P` planes, mirrors reflected up to `D` times, and
-/// a background colour. No allocation: everything lives inline in `heapless::Vec`s.
+/// a background colour.
+///
+/// No allocation: everything lives inline in `heapless::Vec`s.
 ///
 /// The capacities are what a scene type pays for: `Scene<N>` (`L = P = D = 0`) is
-/// spheres under the seed's Lab #1 headlight and renders through exactly that loop;
+/// spheres under the lecture notes' Lab #1 headlight and renders through exactly that loop;
 /// lights bring Phong shading and shadow rays, planes a floor, `D ≥ 1` the mirror loop.
 ///
 /// A scene can be a `static` in flash:
@@ -139,6 +144,7 @@ pub struct Scene<const N: usize, const L: usize = 0, const P: usize = 0, const D
 }
 
 /// A ray's closest hit: which object and the ray parameter `t` (`point = eye + t·d`).
+///
 /// Objects are numbered spheres first ([`Scene::spheres`]), then planes: a plane hit
 /// has `index = spheres().len() + k` for the `k`-th plane.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -174,7 +180,9 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Scene<N, L,
     }
 
     /// A scene from an array of `M ≤ N` spheres, usable in a `static` (`M > N` is a
-    /// compile-time error). The spheres are not checked: build them with
+    /// compile-time error).
+    ///
+    /// The spheres are not checked: build them with
     /// [`Sphere::try_new`] in a const context to have bad numbers rejected at compile
     /// time.
     #[must_use]
@@ -189,7 +197,9 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Scene<N, L,
     }
 
     /// A scene from arrays of spheres, lights and planes (each within its capacity, a
-    /// compile-time error otherwise) and settings, usable in a `static`. Like every
+    /// compile-time error otherwise) and settings, usable in a `static`.
+    ///
+    /// Like every
     /// const constructor it checks nothing: [`Scene::check`] applies the rules of the
     /// checked path ([`push`](Self::push), [`set_settings`](Self::set_settings)) to the
     /// whole scene. The reflection depth has one rule: a `max_depth` above `D` (or
@@ -249,8 +259,9 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Scene<N, L,
     }
 
     /// Replaces sphere `index` after the checks of [`push`](Self::push): what an
-    /// animation calls every frame to move, resize or recolour a sphere. On an error the
-    /// scene is as it was.
+    /// animation calls every frame to move, resize or recolour a sphere.
+    ///
+    /// On an error the scene is as it was.
     ///
     /// ```
     /// use embedded_graphics::pixelcolor::Rgb888;

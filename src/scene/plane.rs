@@ -1,5 +1,7 @@
 //! The infinite plane primitive, optionally checkered: a floor for spheres to stand
-//! on and cast shadows onto. A scene holds up to `P` of them (`Scene<N, L, P>`).
+//! on and cast shadows onto.
+//!
+//! A scene holds up to `P` of them (`Scene<N, L, P>`).
 
 use embedded_graphics::pixelcolor::Rgb888;
 
@@ -7,8 +9,9 @@ use crate::error::PlaneError;
 use crate::math::vec3::Vec3;
 use crate::scene::material::Material;
 
-/// An infinite plane through `point` with normal `normal` (non-zero, any length). Any
-/// point of the plane will do, however far from the eye: a frame anchors the plane at
+/// An infinite plane through `point` with normal `normal` (non-zero, any length).
+///
+/// Any point of the plane will do, however far from the eye: a frame anchors the plane at
 /// its point nearest the eye (the checker moved by whole pairs of cells), so only the
 /// plane's distance from the eye enters the frame's range of sizes.
 ///
@@ -101,12 +104,13 @@ impl Plane {
         Some((n, e1, n.cross(e1)))
     }
 
-    /// The plane's point as a frame anchors it, relative to `eye`: `point − eye`, or,
-    /// where that is more than 2¹⁰ times the plane's distance from the eye plus two
-    /// checker cells, the plane's point nearest the eye moved along `e₁` and `e₂` by the
-    /// given point's offsets modulo two cells. The same plane and the same cells (a
-    /// shift by whole pairs of cells keeps every cell's parity), but no product of the
-    /// frame's plane test cancels: with the point far along the plane, `(q − o)·n` in
+    /// The plane's point as a frame anchors it, relative to `eye`.
+    ///
+    /// That is `point − eye`, or, where that is more than 2¹⁰ times the plane's distance
+    /// from the eye plus two checker cells, the plane's point nearest the eye moved along
+    /// `e₁` and `e₂` by the given point's offsets modulo two cells. The same plane and
+    /// the same cells (a shift by whole pairs of cells keeps every cell's parity), but no
+    /// product of the frame's plane test cancels: with the point far along the plane, `(q − o)·n` in
     /// `f32` would lose the plane's position to rounding of `|q|` (a point 10⁸ away on
     /// a tilted plane misplaces it by units). Once per frame, in `f64`, where each
     /// product of two `f32` values is exact.

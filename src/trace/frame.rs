@@ -11,7 +11,8 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
-use crate::camera::span::{Silhouette, ViewCone};
+use crate::camera::cone::ViewCone;
+use crate::camera::span::Silhouette;
 use crate::camera::Camera;
 use crate::error::{FrameError, ObjectRef};
 use crate::math::vec3::Vec3;

@@ -683,11 +683,11 @@ const LIT: &str = "ambient = 0.2\nmax_depth = 3\nshadows = true\n\
 [[sphere]]\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\ncolor = [255, 64, 64]\nspecular = 0.5\nshininess = 32\nreflect = 0.3\n\
 [[plane]]\npoint = [0.0, -1.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\ncolor = [220, 220, 220]\nchecker = [40, 40, 40]\n";
 
-/// Each bad new field: exit code 2, one message naming the file, the field and the
+/// Each bad light, plane, material or setting field: exit code 2, one message naming the file, the field and the
 /// reason, and no output created.
 #[test]
-fn bad_new_fields_exit_2_naming_file_field_and_reason() {
-    let dir = scratch("bad-new-fields");
+fn bad_light_plane_and_setting_fields_exit_2_naming_file_field_and_reason() {
+    let dir = scratch("bad-feature-fields");
     assert_rendered(&run_in(&dir, &[write(&dir, "lit.toml", LIT)]));
     assert!(is_png(&std::fs::read(dir.join("lit.png")).unwrap()));
 
@@ -894,7 +894,7 @@ fn the_feature_scenes_load_and_render() {
 }
 
 /// A file without lights, planes or mirrors is drawn through the spheres-only type:
-/// the new keys that change nothing without them (highlights, settings) leave the PNG
+/// the keys that change nothing without them (highlights, settings) leave the PNG
 /// byte-identical, and the summary is the Lab #1 one.
 #[test]
 fn a_file_without_features_keeps_its_png() {

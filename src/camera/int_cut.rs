@@ -1,0 +1,148 @@
+//! A silhouette's per-row cut in integer arithmetic ([`IntCut`]), for the integer kernel.
+
+use super::span::{Ellipse, Silhouette, TWO_M16, TWO_M17, TWO_M20, TWO_M50};
+
+/// A silhouette's per-row cut in integer arithmetic, for the integer kernel.
+///
+/// On a chip without an FPU the `f32` cut ([`Silhouette::row_span`]) is a dozen
+/// soft-float calls per sphere and row (`docs/firmware.md`, "The integer kernel",
+/// measures them on a Cortex-M0), this one a few 32-bit multiplies and one integer
+/// square root.
+///
+/// ## Why it culls nothing a hit can reach
+///
+/// Its columns contain those of `row_span`'s formula evaluated **exactly** on the
+/// stored `f32` coefficients — `xc ± (hw + pad)` with `xc = xc0 + kx·dy`,
+/// `hw² = h0·(1 + 2⁻¹⁶) − q·dy²`, `pad = 1 + (|xc0| + |kx·dy| + hw)·2⁻²⁰`,
+/// `dy = j − y0` — and that interval holds every column the enlarged silhouette holds:
+/// the coefficients' own `f32` rounding (relative `2⁻²⁴`, `xc0` within `2⁻⁴`) is far
+/// inside the slack `2⁻¹⁶·h0` and the pad's column, which were sized to cover it and
+/// the per-row `f32` rounding besides. What they do not cover (`y0f`'s rounding, up to
+/// `2⁻²⁵` rows, on an ellipse less than `2⁻⁸` rows tall; the `f64` coefficients' own
+/// rounding) is far inside the spare margin of the integer kernel's silhouette, which
+/// is enlarged by at least 1/8 pixel to cover 1/16. Every step below rounds outward:
+/// - `dy·2¹²` lies in `(dy₁₂ − 1, dy₁₂]` with `dy₁₂ = 2¹²·j − ⌊2¹²·y0⌋` (exact), so
+///   `m = dy₁₂ − 1` (or `−dy₁₂`) bounds `2¹²·|dy|` from below;
+/// - `q·dy² ≥ ⌊q·2²⁴⌋·m²/2⁴⁸`, floored again to `2⁻³²`, and `h0·(1 + 2⁻¹⁶)` is taken
+///   rounded up to `2⁻⁸`: an upper bound of `hw²`, rounded up to `2⁻⁶` and its root
+///   up to `2⁻³` ([`isqrt32`](crate::math::wide::isqrt32), exact, plus one where not a
+///   square);
+/// - the centre `xc0 + kx·dy` from `xc0` and `kx` rounded to `2⁻¹⁶` and `dy₁₂`:
+///   within `e = 2⁻¹⁷ + 2⁻¹⁷·|dy| + (|kx| + 2⁻¹⁷)·2⁻¹² + 2⁻¹⁶` (the last the shift's
+///   floor), taken at the sphere's largest `|dy|` ([`Silhouette::rows`]) and added to
+///   the pad with the pad's relative part at its largest;
+/// - `lo = ⌊xc − hw − pad⌋`, `hi = ⌊xc + hw + pad⌋ + 1`.
+///
+/// Where the ranges that keep its coefficients in 32 bits and its products in 64 do
+/// not hold (`q ≥ 2⁸`, `h0 ≥ 2²⁴ − 1`, `|kx|, |xc0|, |dy| ≥ 2¹⁵`, `|y0| > 2¹⁸`) or a
+/// coefficient is not finite, every column ([`IntCut::All`]): slower, never wrong.
+/// Test: `int_cut_holds_the_exact_row_span` (in `camera/span/tests.rs`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum IntCut {
+    /// Every column of every row.
+    All,
+    /// The cut's fixed-point coefficients (their roundings: [`IntCut`]).
+    Ellipse {
+        /// `⌊2¹²·y0⌋`.
+        y12: i32,
+        /// `⌊2²⁴·q⌋`.
+        q24: u32,
+        /// `⌈2⁸·h0·(1 + 2⁻¹⁶)⌉`.
+        h8: u32,
+        /// `round(2¹⁶·xc0)`, `round(2¹⁶·kx)` and `⌈2¹⁶·(pad + e)⌉` at the largest `|dy|`.
+        xc16: i32,
+        kx16: i32,
+        pad16: i32,
+    },
+}
+
+impl Silhouette {
+    /// The integer cut of this silhouette for the rows `[j0, j1)` ([`Self::rows`]).
+    pub(crate) fn int_cut(&self, (j0, j1): (u32, u32)) -> IntCut {
+        let Some(Ellipse {
+            y0i,
+            y0f,
+            q,
+            h0,
+            xc0,
+            kx,
+        }) = self.get()
+        else {
+            return IntCut::All;
+        };
+        let [y0i, y0f, q, h0, xc0, kx] = [y0i, y0f, q, h0, xc0, kx].map(f64::from);
+        let y0 = y0i + y0f;
+        let dy_max = (f64::from(j0) - y0).abs().max((f64::from(j1) - y0).abs());
+        // h0·(1 + 2⁻¹⁶) rounded up (two f64 roundings of 2⁻⁵³ each, under 2⁻⁵⁰).
+        let h0_up = h0 * (1.0 + TWO_M16) * (1.0 + TWO_M50);
+        let hw_max = libm::sqrt(h0_up.max(0.0));
+        let centre_err = TWO_M17 + TWO_M17 * dy_max + (kx.abs() + TWO_M17) / 4096.0 + TWO_M16;
+        let pad = 1.0 + (xc0.abs() + kx.abs() * dy_max + hw_max) * TWO_M20 + centre_err;
+        // The comparisons also reject NaN.
+        if !(q > 0.0
+            && q < 256.0
+            && h0_up < 16_777_215.0
+            && kx.abs() < 32_768.0
+            && xc0.abs() < 32_768.0
+            && y0i.abs() <= 262_144.0
+            && dy_max < 32_768.0
+            && pad < 16.0)
+        {
+            return IntCut::All;
+        }
+        IntCut::Ellipse {
+            // Exact: y0i·2¹² is an integer, y0f·2¹² is exact in f64.
+            y12: (y0i * 4096.0) as i32 + libm::floor(y0f * 4096.0) as i32,
+            q24: libm::floor(q * 16_777_216.0) as u32,
+            h8: libm::ceil(h0_up.max(0.0) * 256.0) as u32,
+            xc16: libm::round(xc0 * 65_536.0) as i32,
+            kx16: libm::round(kx * 65_536.0) as i32,
+            pad16: libm::ceil(pad * 65_536.0) as i32,
+        }
+    }
+}
+
+impl IntCut {
+    /// The columns `[lo, hi)` of row `j` (clamped to `[0, width)`) whose rays can hit
+    /// the sphere; `None` if none can.
+    #[inline]
+    pub(crate) fn row_span(&self, j: u32, width: u32) -> Option<(u32, u32)> {
+        use crate::math::wide::{isqrt32, mul_i32_wide, mul_wide};
+        let IntCut::Ellipse {
+            y12,
+            q24,
+            h8,
+            xc16,
+            kx16,
+            pad16,
+        } = *self
+        else {
+            return Some((0, width));
+        };
+        // 2¹²·dy in (dy12 − 1, dy12]; m ≤ 2¹²·|dy| < 2²⁷.
+        let dy12 = (i64::from(j) << 12) - i64::from(y12);
+        let m = (if dy12 > 0 { dy12 - 1 } else { -dy12 }) as u32;
+        let m2 = mul_wide(m, m);
+        // ⌊q24·m²/2¹⁶⌋ ≤ 2³²·q·dy² (q24·m² < 2⁸⁶).
+        let q_dy2 = ((u128::from(mul_wide(q24, (m2 >> 32) as u32)) << 32)
+            + u128::from(mul_wide(q24, m2 as u32)))
+            >> 16;
+        // 2³²·hw² at most 2²⁴·h8 − q_dy2 (below zero: no column), then 2⁶·hw² rounded
+        // up.
+        let hw2 = (u128::from(h8) << 24).checked_sub(q_dy2)? as u64;
+        let v = (hw2 >> 26) + u64::from(hw2 & ((1 << 26) - 1) != 0);
+        let Ok(v) = u32::try_from(v) else {
+            return Some((0, width));
+        };
+        // ⌈√v⌉ = 2³·hw rounded up, as 2¹⁶·hw.
+        let r = isqrt32(v);
+        let hw16 = i64::from(r + u32::from(r * r < v)) << 13;
+        // |dy12| < 2²⁸ (the rows' |dy| < 2¹⁵): an i32.
+        let xc = i64::from(xc16) + (mul_i32_wide(kx16, dy12 as i32) >> 12);
+        let w = i64::from(width);
+        let pad16 = i64::from(pad16);
+        let lo = ((xc - hw16 - pad16) >> 16).clamp(0, w) as u32;
+        let hi = (((xc + hw16 + pad16) >> 16) + 1).clamp(0, w) as u32;
+        (lo < hi).then_some((lo, hi))
+    }
+}

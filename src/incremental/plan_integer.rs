@@ -1,0 +1,58 @@
+//! The rule for a frame the integer kernel draws: its quantisation compared, and each
+//! changed sphere's old and new cut.
+
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::Rectangle;
+
+use crate::render::Render;
+
+use super::{Changes, Incremental, STRIP_SETUP};
+
+impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental<N, L, P, D> {
+    /// The rule for a frame the integer kernel can draw, or `None` where neither frame
+    /// is the integer kernel's (the `f32` rule then applies).
+    ///
+    /// Its frame-wide quantisation is equal in both frames, else the whole frame is
+    /// drawn; the regions are each changed sphere's old and new cut (the columns its
+    /// rows are culled to).
+    // Inlined, as `Render::draw` is: with a constant method only its code is linked.
+    #[inline(always)]
+    pub(super) fn plan_integer<C>(
+        &self,
+        render: &Render<'_, N, C, L, P, D>,
+        target: Rectangle,
+        offset: Point,
+    ) -> Option<Changes> {
+        let (camera, scene, options) = (render.camera(), render.scene(), render.options());
+        let size = camera.size();
+        let shown = match &self.shown {
+            Some(shown) if shown.same_frame(render, target, offset) => shown,
+            // The whole frame, if the integer kernel's rule takes it.
+            _ => {
+                return crate::integer::regions::<N>(scene.spheres(), camera, options, |_| false, |_, _| {})
+                    .map(|_| Changes::full(size));
+            }
+        };
+        let changed = |k: usize| shown.changed(scene, k);
+        let mut plan = Changes::empty(size, STRIP_SETUP.one_frame, 0);
+        let mut ok = true;
+        let mut add = |rows: (u32, u32), cut| ok &= plan.push_cut(rows, cut);
+        // Each frame's quantisation, found with its changed spheres' cuts: the cuts are
+        // the plan only if the two quantisations are equal.
+        let new_key = crate::integer::regions::<N>(scene.spheres(), camera, options, changed, &mut add);
+        let old_key = crate::integer::regions::<N>(shown.scene.spheres(), camera, options, changed, &mut add);
+        match (old_key, new_key) {
+            (None, None) => return None,
+            (Some(a), Some(b)) if a == b => {}
+            _ => return Some(Changes::full(size)),
+        }
+        if let Some(stale) = self.stale {
+            ok &= plan.push_rect(stale);
+        }
+        if !ok {
+            return Some(Changes::full(size));
+        }
+        plan.merge();
+        Some(plan)
+    }
+}

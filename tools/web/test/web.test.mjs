@@ -231,7 +231,7 @@ test('an edit abandons the frame being drawn and draws the new text', async () =
   const page = await open();
   await page.select('#scene', 'mirrors');
   await idle(page);
-  const edited = (await page.$eval('#text', (t) => t.value)).replace('max_depth = 3', 'max_depth = 1');
+  const edited = (await page.$eval('#text', (t) => t.value)).replace(/^max_depth = 3$/m, 'max_depth = 1');
   // A slow frame (adaptive sampling, mirrors) asked for, and the text edited while it
   // is drawn.
   await page.evaluate((edited) => {

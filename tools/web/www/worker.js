@@ -39,6 +39,8 @@ function handle({ id, text, view, frame }) {
       info = plain(player.load(text), ['width', 'height', 'frames', 'fps', 'moves', 'features']);
       info.elevation = Array.from(player.elevationRange());
     } catch (e) {
+      // A LoadError, or a trap of the module (then the page starts another worker).
+      if (e instanceof WebAssembly.RuntimeError) return [{ id, failed: String(e) }];
       return [{ id, error: plain(e, ['line', 'field', 'reason', 'message']) }];
     }
   }

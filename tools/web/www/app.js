@@ -387,7 +387,7 @@ function step(delta) {
 }
 
 function updateTransport() {
-  $('play').textContent = state.playing ? 'Pause' : 'Play';
+  $('play').textContent = state.playing && moves() ? 'Pause' : 'Play';
   for (const id of ['play', 'back', 'forward']) $(id).disabled = !moves();
 }
 

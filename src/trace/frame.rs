@@ -40,6 +40,20 @@ pub(crate) struct FrameSphere<T: TestStrategy, Sh: Shader> {
     pub silhouette: Silhouette,
 }
 
+/// What a frame is built from besides the scene and where it is drawn: the camera, the
+/// options, and the two per-frame decisions its caller made before building it.
+#[derive(Clone, Copy)]
+pub(crate) struct FrameSetup<'a> {
+    pub camera: &'a Camera,
+    pub options: Options,
+    /// The stepping's direction error bound, which widens the spans.
+    pub step_err: f32,
+    /// The power of two the eye-relative lengths are scaled by ([`frame_scale`]).
+    pub scale: Scale,
+    /// Whether [`frame_scale`] left out the spheres outside the camera's view cone.
+    pub culled: bool,
+}
+
 /// Per-frame state: the visible part of the image and each sphere's constants.
 pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
     pub camera: &'a Camera,
@@ -58,16 +72,16 @@ pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
 
 impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
     /// Clips the image (placed at `offset`) to `clip` and builds every sphere's
-    /// per-frame constants into `spheres` (`M` at least the scene's sphere count: a
-    /// sphere beyond `M` would be left out) in the frame's units, as [`frame_scale`]
-    /// decided them (the spheres outside its cone, if any, given no span); `step_err`
-    /// is the stepping's direction error bound, which widens the spans. `None` if
-    /// nothing is visible.
+    /// per-frame constants into `spheres`; `None` if nothing is visible.
+    ///
+    /// `M` is at least the scene's sphere count (a sphere beyond `M` would be left
+    /// out). The constants are in the frame's units, as [`frame_scale`] decided them
+    /// (`setup`; the spheres outside its cone, if any, given no span), and the spans
+    /// are widened by the stepping's error bound.
     ///
     /// Out of line: its temporaries (the f64 silhouette computations) are dead before
     /// the scanline loop starts, so they do not add to the pixel loop's stack.
     #[inline(never)]
-    #[allow(clippy::too_many_arguments)]
     pub(crate) fn new<
         const N: usize,
         const M: usize,
@@ -77,14 +91,18 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         S: Stepper,
     >(
         scene: &Scene<N, L, P, D>,
-        camera: &'a Camera,
-        options: Options,
+        setup: FrameSetup<'a>,
         clip: Rectangle,
         offset: Point,
         spheres: &'a mut Vec<FrameSphere<T, Sh>, M>,
-        step_err: f32,
-        (scale, culled): (Scale, bool),
     ) -> Option<Self> {
+        let FrameSetup {
+            camera,
+            options,
+            step_err,
+            scale,
+            culled,
+        } = setup;
         let (i0, i1, j0, j1) = visible(camera.size(), offset, clip)?;
         // The cone outside which the scale left spheres out (rare: rebuilt here rather
         // than carried by every caller).
@@ -106,7 +124,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
             // A sphere the scale left out is one no ray of the frame meets: it gets
             // no span, so its constants (outside the frame's range) are never read.
             let unseen = cone.is_some_and(|c| c.misses(s.center - camera.eye(), s.radius));
-            Self::push_sphere::<M, S>(spheres, s, camera, options, &row, step_err, scale, unseen);
+            Self::push_sphere::<M, S>(spheres, s, &setup, &row, unseen);
         }
         Some(Self {
             camera,
@@ -135,19 +153,23 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         })
     }
 
-    /// One sphere's per-frame constants and silhouette, lengths scaled by `scale`.
+    /// One sphere's per-frame constants and silhouette, lengths scaled by the frame's
+    /// scale.
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
     fn push_sphere<const N: usize, S: Stepper>(
         spheres: &mut Vec<FrameSphere<T, Sh>, N>,
         s: &Sphere,
-        camera: &Camera,
-        options: Options,
+        setup: &FrameSetup<'_>,
         row: &RowGeometry,
-        step_err: f32,
-        scale: Scale,
         unseen: bool,
     ) {
+        let FrameSetup {
+            camera,
+            options,
+            step_err,
+            scale,
+            ..
+        } = *setup;
         let eye = camera.eye();
         {
             let geom = SphereGeom::new(s.center, s.radius, eye, scale);

@@ -12,7 +12,7 @@ use crate::math::SqrtFn;
 use crate::method::intersect::{Auto, Robust, TestStrategy, AUTO_FD_CAPACITY};
 use crate::method::stepping::Stepper;
 use crate::scene::Scene;
-use crate::trace::frame::{frame_scale, hull, Frame};
+use crate::trace::frame::{frame_scale, hull, Frame, FrameSetup};
 use crate::trace::options::Options;
 use crate::trace::rows::Rows;
 use crate::trace::scanline::{Lab1Row, RowSink};
@@ -144,7 +144,7 @@ fn frame_of<
     let mut spheres = Vec::new();
     // The frame's scale, from the scene, camera and method alone (never the clip).
     let step_err = S::error_bound(camera);
-    let decided = match frame_scale::<N, L, P, D>(scene, camera, step_err, G::CENTER) {
+    let (scale, culled) = match frame_scale::<N, L, P, D>(scene, camera, step_err, G::CENTER) {
         Ok(decided) => decided,
         Err(why) => return sink.refused(why),
     };
@@ -152,16 +152,15 @@ fn frame_of<
     let Some(bound) = clips.clone().map(|c| rows.clip(c)).reduce(hull) else {
         return Ok(());
     };
-    let Some(frame) = Frame::<T, Lab1>::new::<N, M, L, P, D, S>(
-        scene,
+    let setup = FrameSetup {
         camera,
         options,
-        bound,
-        offset,
-        &mut spheres,
         step_err,
-        decided,
-    ) else {
+        scale,
+        culled,
+    };
+    let Some(frame) = Frame::<T, Lab1>::new::<N, M, L, P, D, S>(scene, setup, bound, offset, &mut spheres)
+    else {
         return Ok(()); // nothing visible
     };
     let (w, background) = (camera.w(), frame.background);

@@ -1,10 +1,11 @@
-//! Per-frame set-up: which part of the image is visible, and each object's per-frame
-//! constants — geometry ([`SphereGeom`]), the sphere test's own constants
-//! ([`TestStrategy::Consts`]), the shader's ([`Shader::Object`]) and the silhouette
-//! that span culling cuts per row ([`Silhouette`]) — all built in one pass.
+//! Per-frame set-up: which part of the image is visible, and each sphere's per-frame
+//! constants, built in one pass.
 //!
-//! The frame is built by the spheres-only render (`lab1.rs`) and the features path
-//! (`lit.rs`), then handed to the scanline loop (`scanline.rs`).
+//! A sphere's constants are its geometry ([`SphereGeom`]), the sphere test's own
+//! ([`TestStrategy::Consts`]), the shader's ([`Shader::Object`]) and the silhouette
+//! that span culling cuts per row ([`Silhouette`]). The frame is built by the
+//! spheres-only render (`lab1.rs`) and the features path (`lit/mod.rs`), then handed to
+//! the scanline loop (`scanline.rs`).
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
@@ -140,7 +141,9 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
     }
 
     /// The same frame clipped to `clip` instead (target coordinates): its visible
-    /// columns and rows; `None` if it shows nothing. Its pixels are the frame's.
+    /// columns and rows; `None` if it shows nothing.
+    ///
+    /// Its pixels are the frame's.
     #[inline(always)]
     pub(crate) fn clipped(&self, clip: Rectangle) -> Option<Self> {
         let (i0, i1, j0, j1) = visible(self.camera.size(), self.offset, clip)?;
@@ -202,8 +205,9 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
 }
 
 /// The columns `i0..i1` and rows `j0..j1` of an image of `size` at `offset` that `clip`
-/// shows; `None` if none. In i64: no overflow for any offset or target size. A target
-/// whose box reaches past `i32::MAX` is clipped at the last coordinate that exists, so
+/// shows; `None` if none.
+///
+/// In i64: no overflow for any offset or target size. A target whose box reaches past `i32::MAX` is clipped at the last coordinate that exists, so
 /// no row wraps around and no row's area runs past `i32::MAX`. Out of line: once per
 /// frame and per clip, and its 64-bit arithmetic is long on a chip without 64-bit
 /// instructions, where every method's frame would otherwise carry a copy.
@@ -234,7 +238,9 @@ pub(crate) fn hull(a: Rectangle, b: Rectangle) -> Rectangle {
 }
 
 /// The sizes a frame's [`Scale`] must bring into its exact range: the largest and the
-/// smallest non-zero one, and whose they are. An object's size is its largest
+/// smallest non-zero one, and whose they are.
+///
+/// An object's size is its largest
 /// coordinate relative to the eye, or a sphere's radius where that is larger; one that
 /// overflowed `f32` (coordinates ±10³⁸ apart) is infinite, which no scale holds.
 #[derive(Clone, Copy)]
@@ -276,8 +282,9 @@ impl Sizes {
         self
     }
 
-    /// One sphere's size, unless `cone` proves no ray meets it. Out of line: the
-    /// frame's set-up calls it from two loops.
+    /// One sphere's size, unless `cone` proves no ray meets it.
+    ///
+    /// Out of line: the frame's set-up calls it from two loops.
     #[inline(never)]
     fn add_sphere(&mut self, i: usize, s: &Sphere, eye: Vec3, cone: Option<&ViewCone>) {
         let l = s.center - eye;
@@ -315,11 +322,12 @@ impl Sizes {
     }
 }
 
-/// The frame's [`Scale`], once per frame from the scene, the camera and the method —
-/// never from the clip, so a band, a clipped and a whole render share it: the power of
+/// The frame's [`Scale`] and whether spheres outside the camera's [`ViewCone`] were
+/// left out for it, once per frame from the scene, the camera and the method.
+///
+/// Never from the clip, so a band, a clipped and a whole render share it: the power of
 /// two nearest 1 that brings the size of every object the frame's rays can meet into
-/// `[2⁻⁴⁰, 2⁵⁰)` ([`Scale::for_range`]), and whether spheres outside the camera's
-/// [`ViewCone`] were left out for it.
+/// `[2⁻⁴⁰, 2⁵⁰)` ([`Scale::for_range`]).
 ///
 /// Every object counts, except where the frame's rays are primary rays through pixel
 /// centres alone (`cull`, a Lab #1 frame of one ray a pixel): there a sphere outside

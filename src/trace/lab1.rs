@@ -1,6 +1,8 @@
-//! The spheres-only frame (Lab #1 shading): what the one dispatch (`dispatch.rs`)
+//! The spheres-only frame (Lab #1 shading), which the one dispatch (`dispatch.rs`)
 //! calls with the method's strategy types for a scene without lights, planes or
-//! mirrors — the frame's constants built (`frame.rs`), then its rows traced by the
+//! mirrors.
+//!
+//! The frame's constants are built (`frame.rs`), then its rows traced by the
 //! sampling's row loop with the Lab #1 tracer (`scanline.rs`).
 
 use embedded_graphics::prelude::*;
@@ -23,9 +25,9 @@ use crate::trace::shade::Lab1;
 /// square root `Q`.
 ///
 /// Out of line: the per-sphere constants live in this function's own stack frame, so
-/// a render pays for its own method's (a `Scene<64>` with the robust test keeps 68 B a
-/// sphere, with forward differences 116 B), not for the largest of all the methods
-/// the one dispatch could have chosen.
+/// a render pays for its own method's, not for the largest of all the methods the one
+/// dispatch could have chosen (the stack each method takes: `docs/firmware.md`, "On a
+/// Cortex-M4F", Stack).
 #[inline(never)]
 pub(crate) fn render<
     const N: usize,
@@ -61,9 +63,10 @@ pub(crate) fn render<
     frame_of::<N, N, L, P, D, K, S, T, Q, G, I>(scene, camera, options, (clips, rows), offset, sink)
 }
 
-/// `Auto` in a scene type of more than [`AUTO_FD_CAPACITY`] spheres' capacity: the
-/// robust test for a scene holding more than that many, else forward differences in a
-/// frame sized for that many (not for the capacity).
+/// `Auto` in a scene type of more than [`AUTO_FD_CAPACITY`] spheres' capacity.
+///
+/// The robust test for a scene holding more than that many, else forward differences in
+/// a frame sized for that many (not for the capacity).
 #[inline(never)]
 fn auto_above_limit<
     const N: usize,

@@ -76,10 +76,14 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
         Rgb888::new(round(acc[0]), round(acc[1]), round(acc[2]))
     }
 
-    /// [`Self::color`] with the ray's identity (see [`RowTracer::identified`](crate::trace::scanline::RowTracer::identified)) mixed
-    /// into `id`, for adaptive sampling (a copy: the one-ray path's code stays as it
-    /// is); `CULL`: the primary ray is column `i`'s centre ray, so the row's shadow
-    /// spans hold for it (a sub-pixel ray is not culled).
+    /// [`Self::color`] with the ray's identity (see [`RowTracer::identified`]) mixed
+    /// into `id`, for adaptive sampling.
+    ///
+    /// A copy, so that the one-ray path's code stays as it is. `CULL`: the primary ray
+    /// is column `i`'s centre ray, so the row's shadow spans hold for it (a sub-pixel
+    /// ray is not culled).
+    ///
+    /// [`RowTracer::identified`]: crate::trace::scanline::RowTracer::identified
     #[inline(always)]
     fn color_with<I: Ident, const CULL: bool>(
         &mut self,
@@ -142,9 +146,10 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
     }
 
     /// Whether the primary ray `dir` meeting object `k` at `t` sees a checker whose
-    /// cells are less than two pixel footprints wide (then `id.fine()`): moving to the
-    /// next pixel turns the ray by `du` (or `dv`), which moves its hit on the plane by
-    /// at most `t·|du|·(1 + |d|/|d·n|)`.
+    /// cells are less than two pixel footprints wide (then `id.fine()`).
+    ///
+    /// Moving to the next pixel turns the ray by `du` (or `dv`), which moves its hit on
+    /// the plane by at most `t·|du|·(1 + |d|/|d·n|)`.
     #[inline(always)]
     fn fine_checker<I: Ident>(&self, k: ObjectId, t: f32, dir: Vec3, id: &mut I) {
         let f = self.f;

@@ -1,8 +1,9 @@
-//! The per-frame constants of the features path's objects: each sphere's shading
-//! constants ([`LitSphere`], beside the geometry `trace/frame.rs` builds for every
-//! path), each plane's ([`FramePlane`]) and each light's ([`FrameLight`]).
+//! The per-frame constants of the features path's spheres, planes and lights.
 //!
-//! All are in the frame's eye-relative, scaled units ([`Scale`]).
+//! Each sphere's shading constants ([`LitSphere`], beside the geometry
+//! `trace/frame.rs` builds for every path), each plane's ([`FramePlane`]) and each
+//! light's ([`FrameLight`]), all in the frame's eye-relative, scaled units
+//! ([`Scale`]).
 
 use crate::math::vec3::Vec3;
 use crate::method::intersect::{Scale, SphereGeom};

@@ -1,6 +1,7 @@
-//! The exact paths of a frame with ties ([`Ties`]): the closest hit of a reflected ray
-//! among coincident objects ([`closest_twins`]) and the shadow test of a light that
-//! needs the ties ([`occluded_exact`]).
+//! The exact paths of a frame with ties ([`Ties`]).
+//!
+//! The closest hit of a reflected ray among coincident objects ([`closest_twins`]) and
+//! the shadow test of a light that needs the ties ([`occluded_exact`]).
 //!
 //! Free functions over slices ([`Objects`]), one per sphere test and root rather than
 //! one per scene type and exit, so that these rare paths keep the firmware that links

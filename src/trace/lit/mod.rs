@@ -93,9 +93,10 @@ pub(crate) fn render<
     by_origin::<N, L, P, D, K, S, T, Q, G, I>(scene, camera, options, (clips, rows), offset, sink)
 }
 
-/// `Auto` in a scene type of more than [`AUTO_FD_CAPACITY`] spheres' capacity: the
-/// robust test for a scene holding more than that many, else `Auto` (each branch out
-/// of line, so that their frames never add up).
+/// `Auto` in a scene type of more than [`AUTO_FD_CAPACITY`] spheres' capacity.
+///
+/// The robust test for a scene holding more than that many, else `Auto` (each branch
+/// out of line, so that their frames never add up).
 #[inline(never)]
 fn auto_above_limit<
     const N: usize,

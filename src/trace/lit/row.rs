@@ -152,9 +152,10 @@ impl<
         best
     }
 
-    /// [`Self::closest`] in a frame with coincident objects ([`Ties`]): an object with
-    /// a lower-numbered twin is left out (the twin computes the same bits and wins the
-    /// tie), and the twin of the surface the ray leaves is that surface.
+    /// [`Self::closest`] in a frame with coincident objects ([`Ties`]).
+    ///
+    /// An object with a lower-numbered twin is left out (the twin computes the same bits
+    /// and wins the tie), and the twin of the surface the ray leaves is that surface.
     ///
     /// [`Ties`]: crate::trace::lit::ties::Ties
     #[inline(always)]

@@ -1,6 +1,8 @@
 //! The row tracer's shading of a surface point: the surface met ([`Surface`]) and its
-//! local colour — Lab #1 without lights; with lights, Phong (ambient, diffuse and a
-//! specular highlight, [`phong_power`]) with a shadow ray per light.
+//! local colour.
+//!
+//! Lab #1 without lights; with lights, Phong (ambient, diffuse and a specular
+//! highlight, [`phong_power`]) with a shadow ray per light.
 
 use crate::math::sqrt_exact;
 use crate::math::vec3::Vec3;
@@ -233,9 +235,11 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
     }
 }
 
-/// `x^shininess` for `x ∈ (0, 1]`: by repeated squaring when the exponent is a whole
-/// number up to 1024 (the usual Phong exponents; a handful of multiplications instead
-/// of `powf`'s logarithm and exponential), by `libm::powf` otherwise.
+/// `x^shininess` for `x ∈ (0, 1]`, by repeated squaring when the exponent is a whole
+/// number up to 1024, by `libm::powf` otherwise.
+///
+/// Whole exponents up to 1024 are the usual Phong exponents: a handful of
+/// multiplications instead of `powf`'s logarithm and exponential.
 ///
 /// **Error bound.** Each multiplication rounds by at most `u = 2⁻²⁴` relative, and a
 /// squaring doubles the relative error it is given, so the error of `x^s` is the sum

@@ -1,6 +1,8 @@
-//! Shadows on the first plane, seen from the image: where a sphere's shadow can fall
-//! ([`shadow_disc`], [`shadow_silhouette`], [`shadow_regions`]), each row's cut of those
-//! regions ([`ShadowRow`]), and a shadow ray ([`ShadowRay`]).
+//! Shadows on the first plane as the image sees them, and the shadow ray.
+//!
+//! Where a sphere's shadow can fall ([`shadow_disc`], [`shadow_silhouette`],
+//! [`shadow_regions`]), each row's cut of those regions ([`ShadowRow`]), and a shadow
+//! ray ([`ShadowRay`]).
 //!
 //! Per frame, each (light, sphere) pair gets the silhouette of a region of the image
 //! that holds the sphere's shadow on the first plane; per row, the columns of each; per

@@ -75,7 +75,7 @@ pub(crate) trait Rows: Copy {
         X: RowTracer<'s, T, Sh>;
 }
 
-/// [`Sampling::Center`]: the scanline loop as it is.
+/// [`Sampling::Center`](crate::Sampling::Center): the scanline loop as it is.
 #[derive(Clone, Copy)]
 pub(crate) struct CenterRows;
 

@@ -26,13 +26,13 @@ pub(crate) trait Exit {
     fn start(p: Vec3, dir: Vec3, eps: f32) -> Vec3;
 }
 
-/// [`SecondaryOrigin::Convex`]: the surface left is not tested (a sphere's inner one at
-/// its far root).
+/// The exit of [`SecondaryOrigin::Convex`]: the surface left is not tested (a sphere's
+/// inner one at its far root).
 ///
 /// [`SecondaryOrigin::Convex`]: crate::trace::options::SecondaryOrigin::Convex
 pub(crate) struct ConvexExit;
-/// [`SecondaryOrigin::Epsilon`]: the ray starts `ε` along its direction and every
-/// object is tested.
+/// The exit of [`SecondaryOrigin::Epsilon`]: the ray starts `ε` along its direction and
+/// every object is tested.
 ///
 /// [`SecondaryOrigin::Epsilon`]: crate::trace::options::SecondaryOrigin::Epsilon
 pub(crate) struct EpsilonExit;

@@ -8,7 +8,7 @@
 //!   with [`LitSphere`]'s shading constants), each plane's and light's constants
 //!   (`consts.rs`), the ties (`ties.rs`) and the shadow silhouettes (`shadow.rs`) —
 //!   all in the frame's eye-relative, scaled units ([`Scale`]).
-//! - **Per row** ([`LitRow`](row::LitRow)): each plane's span and each shadow's.
+//! - **Per row** ([`LitRow`]): each plane's span and each shadow's.
 //! - **Per pixel**: the closest hit over the active spheres (the method's own test, as
 //!   in the Lab #1 loop) and the planes whose span holds the column; then the shading
 //!   loop (`color.rs`): the local colour (`shading.rs`), and while the surface is a

@@ -17,7 +17,8 @@ use crate::render::Render;
 use crate::sampling::Sampling;
 use crate::scene::sphere::Sphere;
 use crate::scene::Scene;
-use crate::trace::lit;
+use crate::trace::lit::shadow::shadow_regions;
+use crate::trace::lit::ties::same_ties;
 
 use super::can_shadow::can_shadow;
 use super::{Changes, Incremental, STRIP_SETUP};
@@ -88,7 +89,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         }
         let changed = |k: usize| shown.changed(scene, k);
         let any_changed = (0..scene.spheres().len()).any(changed);
-        if any_changed && features && !lit::same_ties(&shown.scene, scene, camera.eye()) {
+        if any_changed && features && !same_ties(&shown.scene, scene, camera.eye()) {
             return full();
         }
         let pad = match render.sampling() {
@@ -134,7 +135,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
                 ok &= add_sphere(&mut plan, old_s);
                 if shadows {
                     for s in [old_s, new_s] {
-                        lit::shadow_regions(scene, s, camera, (scale, step_err), |sil| {
+                        shadow_regions(scene, s, camera, (scale, step_err), |sil| {
                             ok &= plan.push_silhouette(sil);
                         });
                     }

@@ -20,7 +20,9 @@ use crate::math::vec3::Vec3;
 use crate::math::{SqrtFn, EDGE_TOLERANCE, UNIT_ROUNDOFF};
 
 /// A sphere's per-frame geometry relative to the ray origin (the eye, for primary
-/// rays). Built once per frame so the per-pixel tests only multiply and add.
+/// rays).
+///
+/// Built once per frame so the per-pixel tests only multiply and add.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct SphereGeom {
     /// `L = centre − origin`.
@@ -67,8 +69,10 @@ impl SphereGeom {
 
 /// The power of two a frame's (or a query's) eye-relative lengths are multiplied by
 /// before any product is formed, so that no square overflows or loses its precision to
-/// subnormals: the one nearest 1 that brings every size (largest eye-relative
-/// coordinate or radius) into `[2⁻⁴⁰, 2⁵⁰)`. There the tests' squares and products
+/// subnormals.
+///
+/// It is the one nearest 1 that brings every size (largest eye-relative coordinate or
+/// radius) into `[2⁻⁴⁰, 2⁵⁰)`. There the tests' squares and products
 /// stay far inside `f32`'s normal range: a square at most `3·2¹⁰⁰`, times a ray
 /// direction's `|d|² < 2¹⁶`, below `2¹¹⁸`; at least `2⁻⁸⁰` times the stepping's
 /// smallest factors, above `2⁻¹²⁰`.
@@ -94,9 +98,11 @@ impl Scale {
         }
     }
 
-    /// The scale for a frame whose sizes run from `lo` to `hi` (finite, `0 < lo ≤ hi`):
-    /// `2^k` with `k` nearest 0 such that `lo·2^k ≥ 2⁻⁴⁰` and `hi·2^k < 2⁵⁰`, or `None`
-    /// where no normal `f32` power of two does (`hi/lo` beyond about 2⁹⁰).
+    /// The scale for a frame whose sizes run from `lo` to `hi` (finite, `0 < lo ≤ hi`);
+    /// `None` where no normal `f32` power of two fits (`hi/lo` beyond about 2⁹⁰).
+    ///
+    /// The scale is `2^k` with `k` nearest 0 such that `lo·2^k ≥ 2⁻⁴⁰` and
+    /// `hi·2^k < 2⁵⁰`.
     pub(crate) fn for_range(lo: f32, hi: f32) -> Option<Self> {
         const LO: i32 = -40;
         const HI: i32 = 50;
@@ -124,8 +130,9 @@ impl Scale {
         Self::for_range(m, m).unwrap_or(Scale(1.0))
     }
 
-    /// The scale for spheres seen from `origin`. Once per frame: out of line and
-    /// optimised for size (`cold`), not unrolled.
+    /// The scale for spheres seen from `origin`.
+    ///
+    /// Once per frame: out of line and optimised for size (`cold`), not unrolled.
     #[cold]
     #[inline(never)]
     pub(crate) fn for_spheres<'s>(
@@ -180,8 +187,9 @@ pub(crate) trait TestStrategy {
     /// One ray on its own: nearest root `0 < t < t_max` of `origin + t·d`, `a = d·d`.
     fn ray<Q: SqrtFn>(g: &SphereGeom, d: Vec3, a: f32, t_max: f32) -> Option<f32>;
     /// The state for a row whose span starts at column `span_lo` of the *whole* image
-    /// and whose first evaluated column is `first` (> `span_lo` where the render is
-    /// clipped on the left). `dir_at(i)` is the stepping's direction at column `i` of
+    /// and whose first evaluated column is `first`.
+    ///
+    /// `first > span_lo` where the render is clipped on the left. `dir_at(i)` is the stepping's direction at column `i` of
     /// this row, exactly as a whole render computes it. A test with row state must
     /// leave it as a whole render would have it before column `first`, so that a pixel
     /// never depends on the clip.
@@ -192,8 +200,10 @@ pub(crate) trait TestStrategy {
         first: u32,
         dir_at: impl FnMut(u32) -> Vec3,
     ) -> Self::State;
-    /// Within a row: nearest root for column `i` with direction `d`. Columns come in
-    /// increasing steps of one within a sphere's span; the span starts at `lo`.
+    /// Within a row: nearest root for column `i` with direction `d`.
+    ///
+    /// Columns come in increasing steps of one within a sphere's span; the span starts
+    /// at `lo`.
     fn hit<Q: SqrtFn>(
         st: &mut Self::State,
         g: &SphereGeom,
@@ -205,8 +215,9 @@ pub(crate) trait TestStrategy {
     ) -> Option<f32>;
 }
 
-/// The nearer of two roots `t0 ≤ t1` that lies in `(0, t_max)`. NaN fails every
-/// comparison, so it never comes out. `t1` is computed only when `t0` is not positive:
+/// The nearer of two roots `t0 ≤ t1` that lies in `(0, t_max)`.
+///
+/// NaN fails every comparison, so it never comes out. `t1` is computed only when `t0` is not positive:
 /// a hit in front of an eye outside the sphere pays one division, not two.
 #[inline(always)]
 fn nearest(t0: f32, t1: impl FnOnce() -> f32, t_max: f32) -> Option<f32> {
@@ -304,7 +315,8 @@ impl Robust {
     }
 }
 
-/// The nearer of the stable roots of `a t² − 2b t + c = 0` given `root = √(b² − ac)`:
+/// The nearer of the stable roots of `a t² − 2b t + c = 0` given `root = √(b² − ac)`.
+///
 /// `q = b + sign(b)·root` has no `b − root` cancellation, and the roots are `c/q` and
 /// `q/a` (Haines et al.). Shared by the robust and the forward-differenced tests.
 #[inline(always)]
@@ -352,37 +364,33 @@ pub(crate) struct Auto;
 /// ([`SphereTest::ForwardDiff`](crate::SphereTest::ForwardDiff)): direct re-evaluation
 /// every K columns.
 ///
-/// Chosen from the measurement `cargo test --test speed forward_diff_error_against_k
-/// -- --nocapture` (forward differences against the robust test, incremental stepping,
-/// exact root): for every K from 1 to 8192 and every standard scene there is no
-/// coverage flip and no colour more than one level off; the number of one-level
-/// differences grows with K (crowd: 1 at K = 1, 27 at K = 16, 37 from K = 32 on; drift
-/// 480×270: 1, 7, 20, 103 at K = 1, 16, 32, 1024) while the anchor's cost (≈ 25
-/// operations) is already < 2 per pixel at K = 16. K = 16 keeps those differences to a
-/// few dozen pixels per frame.
+/// Chosen from the measurement in `docs/accuracy.md` ("The anchor interval of the
+/// forward differences"): for every K from 1 to 8192 and every standard scene there is
+/// no coverage flip and no colour more than one level off, and the number of one-level
+/// differences grows with K, while the anchor's cost (≈ 25 operations) is already < 2
+/// per pixel at K = 16. K = 16 keeps those differences to a few dozen pixels per frame
+/// (`tests/api/speed.rs`' `forward_diff_error_against_k` asserts the chosen K is as
+/// good as K = 1).
 pub const FD_ANCHOR_INTERVAL: u32 = 16;
 
 /// The most spheres a scene may hold for
-/// [`SphereTest::Auto`](crate::SphereTest::Auto) to take forward differences; a frame
-/// of a scene holding more is drawn with the robust test for every sphere, bit for bit
-/// `Robust`'s render. The pixels follow the spheres a scene holds, never its type. A
+/// [`SphereTest::Auto`](crate::SphereTest::Auto) to take forward differences.
+///
+/// A frame of a scene holding more is drawn with the robust test for every sphere, bit
+/// for bit `Robust`'s render. The pixels follow the spheres a scene holds, never its type. A
 /// render without lights, planes or mirrors of a scene type with a larger capacity
 /// (`Scene<64>`) holding at most this many spheres builds its per-sphere data for this
 /// many, not for the capacity (the path with lights keeps its capacity's arrays).
 ///
 /// Why: a frame's per-sphere data is sized by its capacity, and forward differences
-/// keep constants and row state for every sphere. Measured on the Cortex-M4F
-/// (`bash .ci/firmware`, the 64-sphere `crowd` scene as `Scene<64>`): about 148 B of
-/// stack a sphere with forward differences, 84 B with the robust test (10,256 B
-/// against 6,132 B for `crowd`). So the `f32` render of a `Scene<64>` without lights
-/// needs at most about 6 KiB there with either choice of this rule (32
-/// forward-differenced spheres ≈ 4.7 KB plus the frame's fixed part: an estimate from
-/// those per-sphere figures, not a measured render; the integer kernel of a chip
-/// without an FPU keeps its own per-sphere data). On
-/// the Cortex-M4F the robust test also costs `crowd` fewer instructions a pixel than
-/// forward differences (109.6 against 116.9) and about the same estimated cycles
-/// (+0.16 %); on a host with fast division, and on a chip without an FPU, it is
-/// slower (`docs/speed_vs_accuracy.md`, README "On a Cortex-M0 and RV32").
+/// keep constants and row state for every sphere, where the robust test keeps none. With
+/// this rule the `f32` render of a `Scene<64>` without lights stays within the 6 KiB of
+/// stack the Cortex-M4F firmware is held to, whichever choice the rule makes (the
+/// integer kernel of a chip without an FPU keeps its own per-sphere data). The robust
+/// test costs the 64-sphere `crowd` about what forward differences cost on the
+/// Cortex-M4F, and more on a host with fast division and on a chip without an FPU. The
+/// stack and instruction figures, from `bash .ci/firmware`: `docs/firmware.md` ("On a
+/// Cortex-M4F", Stack); the host's: `docs/speed_vs_accuracy.md`.
 ///
 /// ```
 /// use embedded_graphics::{pixelcolor::Rgb888, prelude::*};
@@ -455,8 +463,10 @@ impl FdConsts {
 
 /// [`Auto`]'s rule for one sphere and frame: forward differences where their error
 /// bound ([`ForwardDiff`]) moves a silhouette edge by at most [`EDGE_TOLERANCE`]
-/// (1/16 pixel), the robust test otherwise — and always when the eye is inside (or on)
-/// the sphere or its silhouette is not a bounded ellipse (`extent` is `None`).
+/// (1/16 pixel), the robust test otherwise.
+///
+/// The robust test always where the eye is inside (or on) the sphere or its silhouette
+/// is not a bounded ellipse (`extent` is `None`).
 ///
 /// The bound, with `u = 2⁻²⁴`, `K` the anchor interval, `Rx` the silhouette's largest
 /// half-width in columns (from the frame's ellipse, off-axis growth included), `Ry` its
@@ -479,7 +489,7 @@ impl FdConsts {
 /// pixel and are as well conditioned as the robust test (perpendicular distance via
 /// `L × d`, no `|L|² − t²` cancellation), so no slides' test is cheaper *and*
 /// sufficient: the algebraic and geometric tests cost a dot product and more per pixel
-/// and fail from distance/radius 178 (measured).
+/// and fail for far, small spheres (`docs/accuracy.md`, "Failure points").
 #[must_use]
 pub(crate) fn auto_uses_forward_diff(c: f32, r2: f32, pw: f32, k: u32, extent: Option<Extent>) -> bool {
     let Some(extent) = extent else {
@@ -545,8 +555,9 @@ impl ForwardDiff {
     }
 
     /// The state a whole render has before column `first`: the anchor at column `p`
-    /// (direction `dir_at(p)`), then the differences up to `first − 1`. Only renders clipped on
-    /// the left get here, so it stays out of line (and off the pixel loop's stack).
+    /// (direction `dir_at(p)`), then the differences up to `first − 1`.
+    ///
+    /// Only renders clipped on the left get here, so it stays out of line (and off the pixel loop's stack).
     #[cold]
     #[inline(never)]
     fn replay(
@@ -696,8 +707,11 @@ mod tests {
     use super::*;
 
     /// Auto's rule at its edges: the eye inside or on the sphere, no bounded
-    /// silhouette, spheres too large (R ≈ 2¹⁷ px at K = 16), too small (R ≈ 0.006 px)
-    /// and a sphere far narrower than it is tall (very non-square pixels).
+    /// silhouette, spheres too large or too small, and a sphere far narrower than it is
+    /// tall.
+    ///
+    /// Too large is `R ≈ 2¹⁷` px at `K = 16`, too small `R ≈ 0.006` px; far narrower
+    /// comes from very non-square pixels.
     #[test]
     fn auto_rule_boundaries() {
         let pw = 1e-3;

@@ -72,15 +72,18 @@ axis! {
     /// `stepping.rs`).
     Stepping, "stepping" {
         /// The slides' stepping (see the crate docs' terms): the pixel centre `p` is
-        /// stepped in world space (`p += pw·u`, `scanlineStart −= ph·v`) and the ray is
-        /// `p − eye`. Drifts: each add rounds relative to `|p| ≈ |eye|`, so far from the
-        /// origin whole pixels are lost across a wide image (measured by the accuracy
-        /// lab: ≥ 1 px at 1920 wide from `|eye|` = 100, at 4096 wide from `|eye|` = 10;
-        /// 52.9 px on `scenes/drift.toml`).
+        /// stepped in world space and the ray is `p − eye`.
+        ///
+        /// The steps are `p += pw·u` and `scanlineStart −= ph·v`. It drifts: each add
+        /// rounds relative to `|p| ≈ |eye|`, so far from the origin whole pixels are
+        /// lost across a wide image (how far, measured by the accuracy lab:
+        /// `docs/accuracy.md`, "Failure points", Stepping drift).
         WorldSpace => "world-space",
         /// Camera-relative: each scanline's first direction is computed directly
         /// (`p(0,j) − eye`, once per row), then the direction is stepped by `pw·u` per
-        /// pixel. Rounding is relative to `|p − eye| ≈ 1`, independent of where the eye is.
+        /// pixel.
+        ///
+        /// Rounding is relative to `|p − eye| ≈ 1`, independent of where the eye is.
         Incremental => "incremental",
         /// Every pixel's direction evaluated directly, `first + j·dv + i·du`: no
         /// accumulation at all, three multiplies more per pixel.
@@ -100,24 +103,28 @@ axis! {
         Robust => "robust",
         /// The robust test's discriminant `a·r² − |L × d|²` and `b = L·d`
         /// forward-differenced along each scanline (three additions per sphere and
-        /// pixel), re-anchored by direct evaluation at each span start and every
-        /// [`FD_ANCHOR_INTERVAL`](crate::method::intersect::FD_ANCHOR_INTERVAL) columns. Error
-        /// bound: a silhouette edge moves by at most `2⁻²⁴·K·(R + 2K)` pixels (`R` the
+        /// pixel).
+        ///
+        /// Re-anchored by direct evaluation at each span start and every
+        /// [`FD_ANCHOR_INTERVAL`](crate::method::intersect::FD_ANCHOR_INTERVAL) columns.
+        /// Error bound: a silhouette edge moves by at most `2⁻²⁴·K·(R + 2K)` pixels (`R` the
         /// sphere's radius on screen in pixels, `K` the anchor interval), on top of the
         /// robust test's own error. A single-ray query
         /// ([`Sphere::intersect`](crate::Sphere::intersect)) is an anchor, i.e.
         /// evaluated directly.
         ForwardDiff => "forward-diff",
         /// Adaptive: per sphere and frame, `ForwardDiff` where its error bound moves an
-        /// edge by at most [`EDGE_TOLERANCE`](crate::math::EDGE_TOLERANCE) (1/16 pixel:
-        /// `2⁻²⁴·K·(R + 2K) ≤ 1/16`, the eye outside the sphere), `Robust` otherwise.
-        /// The slides' algebraic and geometric tests are never chosen: they are dearer
+        /// edge by at most [`EDGE_TOLERANCE`](crate::math::EDGE_TOLERANCE), `Robust`
+        /// otherwise.
+        ///
+        /// The rule is `2⁻²⁴·K·(R + 2K) ≤ 1/16` pixel, the eye outside the sphere. The
+        /// slides' algebraic and geometric tests are never chosen: they are dearer
         /// per pixel than forward differences and fail from distance/radius ≈ 100.
         /// A scene holding more than
         /// [`AUTO_FD_CAPACITY`](crate::method::intersect::AUTO_FD_CAPACITY) (32) spheres is
         /// drawn with `Robust` for every sphere, as its render's stack would otherwise
-        /// keep the forward differences' constants for each (64 spheres: 6,132 B
-        /// instead of 10,256 B on the Cortex-M4F). Single-ray queries behave as
+        /// keep the forward differences' constants for each (the stack this saves:
+        /// `docs/firmware.md`, "On a Cortex-M4F", Stack). Single-ray queries behave as
         /// `ForwardDiff`.
         Auto => "auto",
     }
@@ -141,7 +148,9 @@ axis! {
         F32 => "f32",
         /// The integer kernel: exact integer stepping, the discriminant
         /// forward-differenced exactly in `i128`, an integer square root and the Lab #1
-        /// shade in Q16 — no floating point in the pixel loop. Taken per frame where
+        /// shade in Q16 — no floating point in the pixel loop.
+        ///
+        /// Taken per frame where
         /// its bounds keep every silhouette within
         /// [`EDGE_TOLERANCE`](crate::math::EDGE_TOLERANCE) (1/16 pixel) and every shade
         /// factor within 2⁻⁹ (under one level) of the exact one; otherwise (and for
@@ -151,10 +160,11 @@ axis! {
     }
 }
 
-/// Whether the target has no hardware floating point, as far as `cfg` tells: ARM
-/// without the hard-float ABI (`thumbv6m-none-eabi`, `thumbv7m-none-eabi`; a Cortex-M4F
-/// built for the soft-float ABI counts too, every `f32` operation being a call there)
-/// and RISC-V without the `F` extension (`riscv32imc-unknown-none-elf`).
+/// Whether the target has no hardware floating point, as far as `cfg` tells.
+///
+/// That is ARM without the hard-float ABI (`thumbv6m-none-eabi`, `thumbv7m-none-eabi`;
+/// a Cortex-M4F built for the soft-float ABI counts too, every `f32` operation being a
+/// call there) and RISC-V without the `F` extension (`riscv32imc-unknown-none-elf`).
 /// [`Method::TARGET_DEFAULT`] takes the integer kernel there.
 pub const FPU_LESS: bool = cfg!(any(
     all(target_arch = "arm", not(target_abi = "eabihf")),
@@ -208,10 +218,11 @@ const METHOD_COUNT: usize = Stepping::ALL.len() * SphereTest::ALL.len() * Sqrt::
 
 impl Method {
     /// The default on this target, said at the call site: [`Method::F32`] on a target
-    /// with an FPU, [`Method::INTEGER`] on one without ([`FPU_LESS`]), where the
-    /// integer kernel draws the lab scene in under a third of the instructions, as
-    /// exactly (measured in QEMU, Cortex-M0: 359.3 against 1,155.6 per pixel;
-    /// `docs/firmware.md`). `Method::default()` is this.
+    /// with an FPU, [`Method::INTEGER`] on one without ([`FPU_LESS`]).
+    ///
+    /// Without an FPU the integer kernel draws the lab scene in a fraction of the `f32`
+    /// method's instructions, as exactly (measured in QEMU: `docs/firmware.md`, "The
+    /// integer kernel: the default without an FPU"). `Method::default()` is this.
     pub const TARGET_DEFAULT: Method = if FPU_LESS { Method::INTEGER } else { Method::F32 };
 
     /// The default `f32` method (see the type's docs): `direct/auto/exact`.
@@ -220,7 +231,8 @@ impl Method {
     /// The integer kernel, `direct/auto/exact` in `f32` where its bounds do not hold.
     pub const INTEGER: Method = Method::F32.with_arithmetic(Arithmetic::Integer);
 
-    /// The seed taken literally: world-space stepping, the quadratic, exact root.
+    /// The lecture notes taken literally: world-space stepping, the quadratic, exact
+    /// root.
     pub const LITERAL: Method = Method::new(Stepping::WorldSpace, SphereTest::Algebraic, Sqrt::Exact);
 
     /// A method from its three choices.
@@ -242,7 +254,9 @@ impl Method {
     }
 
     /// Every `f32` combination, for charts and sweeps: stepping-major, then sphere
-    /// test, then square root, each in its axis' `ALL` order. The integer kernel is
+    /// test, then square root, each in its axis' `ALL` order.
+    ///
+    /// The integer kernel is
     /// [`Method::INTEGER`], not in this list: it is one point (its own stepping, test
     /// and root), and the `f32` list keeps its names, order and measured runs.
     // Indexing in a const initialiser is checked at compile time.

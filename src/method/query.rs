@@ -1,5 +1,7 @@
 //! Single-ray queries through the one dispatch: [`Sphere::intersect`] and the slides'
-//! tests by name, and [`Scene::closest_hit`]. They are the scene objects' methods, kept
+//! tests by name, and [`Scene::closest_hit`].
+//!
+//! They are the scene objects' methods, kept
 //! here so that the scene's types sit below the methods that test them.
 
 use crate::math::vec3::Vec3;
@@ -47,10 +49,11 @@ impl Sphere {
     ///
     /// **Fails** for a sphere far away relative to its size: `b²` and `4ac` are both
     /// ≈ `4a|L|²` and their difference `4a(r² − dist²)` cancels catastrophically.
-    /// Measured by the accuracy lab (`lab/tests/lab/stability.rs`): no error up to
-    /// distance/radius 100, edge pixels flip from 178, half the disc is wrong at 3162,
-    /// and from 17783 the f32 rounding of `|L|²` swamps `r²` and every ray is a hit. `−b − √disc` also cancels
-    /// for the near root when the eye is close to the surface.
+    /// Edge pixels flip first, then half the disc is wrong, and once the f32 rounding of
+    /// `|L|²` swamps `r²` every ray is a hit (the distances, measured by the accuracy
+    /// lab's `lab/tests/lab/stability.rs`: `docs/accuracy.md`, "Failure points").
+    /// `−b − √disc` also cancels for the near root when the eye is close to the
+    /// surface.
     #[must_use]
     pub fn intersect_algebraic(&self, origin: Vec3, dir: Vec3) -> Option<f32> {
         self.intersect(origin, dir, SphereTest::Algebraic, Sqrt::Exact)
@@ -60,7 +63,8 @@ impl Sphere {
     /// `d² > r²`, `t_hc = √(r² − d²)`, distance `t_ca ∓ t_hc`.
     ///
     /// **Fails** the same way as the algebraic form for far, small spheres: `|L|² − t_ca²`
-    /// cancels catastrophically (measured: edge pixels from distance/radius 178). It also
+    /// cancels catastrophically (where edge pixels flip: `docs/accuracy.md`, "Failure
+    /// points"). It also
     /// normalises the ray with the square root, so with [`Sqrt::Fast`] (up to 6 % off)
     /// `t_ca` and hence `d²` are wrong and coverage fails everywhere.
     #[must_use]
@@ -68,13 +72,14 @@ impl Sphere {
         self.intersect(origin, dir, SphereTest::Geometric, Sqrt::Exact)
     }
 
-    /// The robust test of Haines et al. (Ray Tracing Gems, ch. 7): discriminant from
-    /// the perpendicular vector, `r² − |L − (b/a)·d|²` with `b = L·d`, which has no
-    /// cancellation between two large squares, and the stable roots `q = b + sign(b)·√(a·disc)`,
-    /// `t = c/q` and `t = q/a` (no `−b + √…` cancellation).
+    /// The robust test of Haines et al. (Ray Tracing Gems, ch. 7): the discriminant from
+    /// the perpendicular vector and the stable roots.
     ///
-    /// Measured with zero coverage errors up to distance/radius 1e5 in f32 (the largest
-    /// the sweep reaches). Remaining failure: when `b = 0` and the
+    /// The discriminant is `r² − |L − (b/a)·d|²` with `b = L·d`, which has no
+    /// cancellation between two large squares; the roots are `t = c/q` and `t = q/a`
+    /// with `q = b + sign(b)·√(a·disc)` (no `−b + √…` cancellation). The accuracy lab
+    /// finds no coverage error in `f32` as far as its sweep reaches (`docs/accuracy.md`,
+    /// "Failure points"). Remaining failure: when `b = 0` and the
     /// discriminant is exactly 0 (eye exactly on the surface, ray tangent) `q = 0` and
     /// the ray is reported as a miss.
     #[must_use]

@@ -15,10 +15,14 @@ pub(crate) trait Stepper {
     type Row: RowStep;
     fn new(camera: &Camera) -> Self;
     /// A bound `E` on `|d − (F + i·du + j·dv)|` (exact arithmetic on the camera's f32
-    /// `F`, `du`, `dv`) over the whole image, for span culling's margin. Each f32
+    /// `F`, `du`, `dv`) over the whole image, for span culling's margin.
+    ///
+    /// Each f32
     /// addition or product rounds by at most 2⁻²⁴ of its result's norm.
     fn error_bound(camera: &Camera) -> f32;
-    /// Prepare row `j`, starting at column `i0`. Rows come in increasing order.
+    /// Prepare row `j`, starting at column `i0`.
+    ///
+    /// Rows come in increasing order.
     fn start_row(&mut self, j: u32, i0: u32) -> Self::Row;
 }
 

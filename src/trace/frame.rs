@@ -1,10 +1,11 @@
-//! Per-frame set-up: which part of the image is visible, and each object's per-frame
-//! constants — geometry ([`SphereGeom`]), the sphere test's own constants
-//! ([`TestStrategy::Consts`]), the shader's ([`Shader::Object`]) and the silhouette
-//! that span culling cuts per row ([`Silhouette`]) — all built in one pass.
+//! Per-frame set-up: which part of the image is visible, and each sphere's per-frame
+//! constants, built in one pass.
 //!
-//! The frame is built by the spheres-only render (`lab1.rs`) and the features path
-//! (`lit.rs`), then handed to the scanline loop (`scanline.rs`).
+//! A sphere's constants are its geometry ([`SphereGeom`]), the sphere test's own
+//! ([`TestStrategy::Consts`]), the shader's ([`Shader::Object`]) and the silhouette
+//! that span culling cuts per row ([`Silhouette`]). The frame is built by the
+//! spheres-only render (`lab1.rs`) and the features path (`lit/mod.rs`), then handed to
+//! the scanline loop (`scanline.rs`).
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
@@ -41,6 +42,20 @@ pub(crate) struct FrameSphere<T: TestStrategy, Sh: Shader> {
     pub silhouette: Silhouette,
 }
 
+/// What a frame is built from besides the scene and where it is drawn: the camera, the
+/// options, and the two per-frame decisions its caller made before building it.
+#[derive(Clone, Copy)]
+pub(crate) struct FrameSetup<'a> {
+    pub camera: &'a Camera,
+    pub options: Options,
+    /// The stepping's direction error bound, which widens the spans.
+    pub step_err: f32,
+    /// The power of two the eye-relative lengths are scaled by ([`frame_scale`]).
+    pub scale: Scale,
+    /// Whether [`frame_scale`] left out the spheres outside the camera's view cone.
+    pub culled: bool,
+}
+
 /// Per-frame state: the visible part of the image and each sphere's constants.
 pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
     pub camera: &'a Camera,
@@ -59,16 +74,16 @@ pub(crate) struct Frame<'a, T: TestStrategy, Sh: Shader> {
 
 impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
     /// Clips the image (placed at `offset`) to `clip` and builds every sphere's
-    /// per-frame constants into `spheres` (`M` at least the scene's sphere count: a
-    /// sphere beyond `M` would be left out) in the frame's units, as [`frame_scale`]
-    /// decided them (the spheres outside its cone, if any, given no span); `step_err`
-    /// is the stepping's direction error bound, which widens the spans. `None` if
-    /// nothing is visible.
+    /// per-frame constants into `spheres`; `None` if nothing is visible.
+    ///
+    /// `M` is at least the scene's sphere count (a sphere beyond `M` would be left
+    /// out). The constants are in the frame's units, as [`frame_scale`] decided them
+    /// (`setup`; the spheres outside its cone, if any, given no span), and the spans
+    /// are widened by the stepping's error bound.
     ///
     /// Out of line: its temporaries (the f64 silhouette computations) are dead before
     /// the scanline loop starts, so they do not add to the pixel loop's stack.
     #[inline(never)]
-    #[allow(clippy::too_many_arguments)]
     pub(crate) fn new<
         const N: usize,
         const M: usize,
@@ -78,14 +93,18 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         S: Stepper,
     >(
         scene: &Scene<N, L, P, D>,
-        camera: &'a Camera,
-        options: Options,
+        setup: FrameSetup<'a>,
         clip: Rectangle,
         offset: Point,
         spheres: &'a mut Vec<FrameSphere<T, Sh>, M>,
-        step_err: f32,
-        (scale, culled): (Scale, bool),
     ) -> Option<Self> {
+        let FrameSetup {
+            camera,
+            options,
+            step_err,
+            scale,
+            culled,
+        } = setup;
         let (i0, i1, j0, j1) = visible(camera.size(), offset, clip)?;
         // The cone outside which the scale left spheres out (rare: rebuilt here rather
         // than carried by every caller).
@@ -107,7 +126,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
             // A sphere the scale left out is one no ray of the frame meets: it gets
             // no span, so its constants (outside the frame's range) are never read.
             let unseen = cone.is_some_and(|c| c.misses(s.center - camera.eye(), s.radius));
-            Self::push_sphere::<M, S>(spheres, s, camera, options, &row, step_err, scale, unseen);
+            Self::push_sphere::<M, S>(spheres, s, &setup, &row, unseen);
         }
         Some(Self {
             camera,
@@ -123,7 +142,9 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
     }
 
     /// The same frame clipped to `clip` instead (target coordinates): its visible
-    /// columns and rows; `None` if it shows nothing. Its pixels are the frame's.
+    /// columns and rows; `None` if it shows nothing.
+    ///
+    /// Its pixels are the frame's.
     #[inline(always)]
     pub(crate) fn clipped(&self, clip: Rectangle) -> Option<Self> {
         let (i0, i1, j0, j1) = visible(self.camera.size(), self.offset, clip)?;
@@ -136,19 +157,23 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         })
     }
 
-    /// One sphere's per-frame constants and silhouette, lengths scaled by `scale`.
+    /// One sphere's per-frame constants and silhouette, lengths scaled by the frame's
+    /// scale.
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
     fn push_sphere<const N: usize, S: Stepper>(
         spheres: &mut Vec<FrameSphere<T, Sh>, N>,
         s: &Sphere,
-        camera: &Camera,
-        options: Options,
+        setup: &FrameSetup<'_>,
         row: &RowGeometry,
-        step_err: f32,
-        scale: Scale,
         unseen: bool,
     ) {
+        let FrameSetup {
+            camera,
+            options,
+            step_err,
+            scale,
+            ..
+        } = *setup;
         let eye = camera.eye();
         {
             let geom = SphereGeom::new(s.center, s.radius, eye, scale);
@@ -181,8 +206,9 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
 }
 
 /// The columns `i0..i1` and rows `j0..j1` of an image of `size` at `offset` that `clip`
-/// shows; `None` if none. In i64: no overflow for any offset or target size. A target
-/// whose box reaches past `i32::MAX` is clipped at the last coordinate that exists, so
+/// shows; `None` if none.
+///
+/// In i64: no overflow for any offset or target size. A target whose box reaches past `i32::MAX` is clipped at the last coordinate that exists, so
 /// no row wraps around and no row's area runs past `i32::MAX`. Out of line: once per
 /// frame and per clip, and its 64-bit arithmetic is long on a chip without 64-bit
 /// instructions, where every method's frame would otherwise carry a copy.
@@ -213,7 +239,9 @@ pub(crate) fn hull(a: Rectangle, b: Rectangle) -> Rectangle {
 }
 
 /// The sizes a frame's [`Scale`] must bring into its exact range: the largest and the
-/// smallest non-zero one, and whose they are. An object's size is its largest
+/// smallest non-zero one, and whose they are.
+///
+/// An object's size is its largest
 /// coordinate relative to the eye, or a sphere's radius where that is larger; one that
 /// overflowed `f32` (coordinates ±10³⁸ apart) is infinite, which no scale holds.
 #[derive(Clone, Copy)]
@@ -255,8 +283,9 @@ impl Sizes {
         self
     }
 
-    /// One sphere's size, unless `cone` proves no ray meets it. Out of line: the
-    /// frame's set-up calls it from two loops.
+    /// One sphere's size, unless `cone` proves no ray meets it.
+    ///
+    /// Out of line: the frame's set-up calls it from two loops.
     #[inline(never)]
     fn add_sphere(&mut self, i: usize, s: &Sphere, eye: Vec3, cone: Option<&ViewCone>) {
         let l = s.center - eye;
@@ -294,11 +323,12 @@ impl Sizes {
     }
 }
 
-/// The frame's [`Scale`], once per frame from the scene, the camera and the method —
-/// never from the clip, so a band, a clipped and a whole render share it: the power of
+/// The frame's [`Scale`] and whether spheres outside the camera's [`ViewCone`] were
+/// left out for it, once per frame from the scene, the camera and the method.
+///
+/// Never from the clip, so a band, a clipped and a whole render share it: the power of
 /// two nearest 1 that brings the size of every object the frame's rays can meet into
-/// `[2⁻⁴⁰, 2⁵⁰)` ([`Scale::for_range`]), and whether spheres outside the camera's
-/// [`ViewCone`] were left out for it.
+/// `[2⁻⁴⁰, 2⁵⁰)` ([`Scale::for_range`]).
 ///
 /// Every object counts, except where the frame's rays are primary rays through pixel
 /// centres alone (`cull`, a Lab #1 frame of one ray a pixel): there a sphere outside

@@ -1,6 +1,8 @@
-//! The spheres-only frame (Lab #1 shading): what the one dispatch (`dispatch.rs`)
+//! The spheres-only frame (Lab #1 shading), which the one dispatch (`dispatch.rs`)
 //! calls with the method's strategy types for a scene without lights, planes or
-//! mirrors — the frame's constants built (`frame.rs`), then its rows traced by the
+//! mirrors.
+//!
+//! The frame's constants are built (`frame.rs`), then its rows traced by the
 //! sampling's row loop with the Lab #1 tracer (`scanline.rs`).
 
 use embedded_graphics::prelude::*;
@@ -12,7 +14,7 @@ use crate::math::SqrtFn;
 use crate::method::intersect::{Auto, Robust, TestStrategy, AUTO_FD_CAPACITY};
 use crate::method::stepping::Stepper;
 use crate::scene::Scene;
-use crate::trace::frame::{frame_scale, hull, Frame};
+use crate::trace::frame::{frame_scale, hull, Frame, FrameSetup};
 use crate::trace::options::Options;
 use crate::trace::rows::Rows;
 use crate::trace::scanline::{Lab1Row, RowSink};
@@ -23,9 +25,9 @@ use crate::trace::shade::Lab1;
 /// square root `Q`.
 ///
 /// Out of line: the per-sphere constants live in this function's own stack frame, so
-/// a render pays for its own method's (a `Scene<64>` with the robust test keeps 68 B a
-/// sphere, with forward differences 116 B), not for the largest of all the methods
-/// the one dispatch could have chosen.
+/// a render pays for its own method's, not for the largest of all the methods the one
+/// dispatch could have chosen (the stack each method takes: `docs/firmware.md`, "On a
+/// Cortex-M4F", Stack).
 #[inline(never)]
 pub(crate) fn render<
     const N: usize,
@@ -61,9 +63,10 @@ pub(crate) fn render<
     frame_of::<N, N, L, P, D, K, S, T, Q, G, I>(scene, camera, options, (clips, rows), offset, sink)
 }
 
-/// `Auto` in a scene type of more than [`AUTO_FD_CAPACITY`] spheres' capacity: the
-/// robust test for a scene holding more than that many, else forward differences in a
-/// frame sized for that many (not for the capacity).
+/// `Auto` in a scene type of more than [`AUTO_FD_CAPACITY`] spheres' capacity.
+///
+/// The robust test for a scene holding more than that many, else forward differences in
+/// a frame sized for that many (not for the capacity).
 #[inline(never)]
 fn auto_above_limit<
     const N: usize,
@@ -144,7 +147,7 @@ fn frame_of<
     let mut spheres = Vec::new();
     // The frame's scale, from the scene, camera and method alone (never the clip).
     let step_err = S::error_bound(camera);
-    let decided = match frame_scale::<N, L, P, D>(scene, camera, step_err, G::CENTER) {
+    let (scale, culled) = match frame_scale::<N, L, P, D>(scene, camera, step_err, G::CENTER) {
         Ok(decided) => decided,
         Err(why) => return sink.refused(why),
     };
@@ -152,16 +155,15 @@ fn frame_of<
     let Some(bound) = clips.clone().map(|c| rows.clip(c)).reduce(hull) else {
         return Ok(());
     };
-    let Some(frame) = Frame::<T, Lab1>::new::<N, M, L, P, D, S>(
-        scene,
+    let setup = FrameSetup {
         camera,
         options,
-        bound,
-        offset,
-        &mut spheres,
         step_err,
-        decided,
-    ) else {
+        scale,
+        culled,
+    };
+    let Some(frame) = Frame::<T, Lab1>::new::<N, M, L, P, D, S>(scene, setup, bound, offset, &mut spheres)
+    else {
         return Ok(()); // nothing visible
     };
     let (w, background) = (camera.w(), frame.background);

@@ -1,6 +1,8 @@
-//! Tracing at its three rates: per frame (`frame`: the visible part of the image and
-//! each sphere's constants), per row (`scanline`: the row's active spheres) and per
-//! pixel (the closest hit, shaded by `shade`); `lit` is the same loop's features path
+//! Tracing at its three rates: per frame, per row and per pixel.
+//!
+//! Per frame `frame` (the visible part of the image and each sphere's constants), per
+//! row `scanline` (the row's active spheres), per pixel the closest hit, shaded by
+//! `shade`; `lab1` is the spheres-only frame, `lit` the same loop's features path
 //! (lights, shadows, planes, mirrors).
 
 pub(crate) mod frame;

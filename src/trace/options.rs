@@ -1,8 +1,10 @@
-//! What a render is asked for besides the scene, the camera and the method: its
-//! [`Options`] (span culling, the forward-differenced test's anchor interval, where
-//! secondary rays start, any-hit shadow rays) and what [`Render::trace`](crate::Render::trace)
-//! reports per pixel, a [`Sample`]. Small shared types: every stage of tracing reads
-//! them, none of them reads a stage.
+//! What a render is asked for besides the scene, the camera and the method, and what it
+//! reports per pixel.
+//!
+//! Its [`Options`] (span culling, the forward-differenced test's anchor interval, where
+//! secondary rays start, any-hit shadow rays) and what
+//! [`Render::trace`](crate::Render::trace) reports per pixel, a [`Sample`]. Small shared
+//! types: every stage of tracing reads them, none of them reads a stage.
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
@@ -11,9 +13,11 @@ use crate::math::vec3::Vec3;
 use crate::method::intersect::FD_ANCHOR_INTERVAL;
 use crate::scene::Hit;
 
-/// How a render traces besides the [`Method`](crate::Method) and the [`Sampling`](crate::Sampling):
-/// where shadow and reflection rays start ([`SecondaryOrigin`]). Nothing here changes
-/// what a pixel means beyond that choice.
+/// How a render traces besides the [`Method`](crate::Method) and the
+/// [`Sampling`](crate::Sampling): where shadow and reflection rays start
+/// ([`SecondaryOrigin`]).
+///
+/// Nothing here changes what a pixel means beyond that choice.
 ///
 /// The kernel's speed devices — span culling, any-hit shadow rays, the
 /// forward-differenced test's anchor interval — are always on at their proven settings;
@@ -30,21 +34,29 @@ use crate::scene::Hit;
 #[non_exhaustive]
 pub struct Options {
     /// Where shadow and reflection rays start (default [`SecondaryOrigin::Convex`]: no
-    /// epsilon). Only scenes with lights or mirrors trace such rays.
+    /// epsilon).
+    ///
+    /// Only scenes with lights or mirrors trace such rays.
     pub secondary: SecondaryOrigin,
     /// Span culling (default on): a sphere is tested only in the columns of each row
-    /// that its silhouette, enlarged by the test's and the stepping's proven rounding
-    /// margins, can reach. Proven to change no pixel (`tests/api/speed.rs`, bit for bit
+    /// that its silhouette can reach.
+    ///
+    /// The silhouette is enlarged by the test's and the stepping's proven rounding
+    /// margins: culling is proven to change no pixel (`tests/api/speed.rs`, bit for bit
     /// against the unculled render). Off, every sphere is tested at every pixel — the
-    /// seed's algorithm taken literally, the benchmarks' baseline.
+    /// lecture notes' algorithm taken literally, the benchmarks' baseline.
     pub(crate) span_culling: bool,
     /// The anchor interval K of the forward-differenced test (default
     /// `FD_ANCHOR_INTERVAL`; `0` is taken as 1): its differences are re-evaluated
-    /// directly every K columns. The edge error bound grows with K (see
+    /// directly every K columns.
+    ///
+    /// The edge error bound grows with K (see
     /// [`SphereTest::ForwardDiff`](crate::SphereTest::ForwardDiff)); for measuring it.
     pub(crate) anchor_interval: u32,
     /// Shadow rays stop at the first occluder, testing first the one that shadowed the
-    /// previous pixel (default on). Off, every object is tested for every shadow ray,
+    /// previous pixel (default on).
+    ///
+    /// Off, every object is tested for every shadow ray,
     /// as a closest-hit search would — the benchmarks' literal baseline; no pixel
     /// changes.
     pub(crate) shadow_any_hit: bool,
@@ -69,7 +81,9 @@ impl Options {
 }
 
 /// The literal baselines, for measuring the speed devices against them (feature
-/// `bench-baselines`). None changes a pixel's meaning: culling and any-hit shadow rays
+/// `bench-baselines`).
+///
+/// None changes a pixel's meaning: culling and any-hit shadow rays
 /// change no pixel at all, the anchor interval moves the forward-differenced test's
 /// pixels only within its stated error bound.
 #[cfg(feature = "bench-baselines")]
@@ -139,7 +153,9 @@ pub struct Sample {
 }
 
 /// Where a shadow or reflection ray starts: the choice of how a secondary ray leaves
-/// the surface its origin was computed on. A speed/accuracy axis of its own (matched
+/// the surface its origin was computed on.
+///
+/// A speed/accuracy axis of its own (matched
 /// once per frame, like the [`Method`](crate::Method)); only scenes with lights or
 /// mirrors use it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -147,13 +163,16 @@ pub struct Sample {
 #[non_exhaustive]
 pub enum SecondaryOrigin {
     /// No epsilon (default): the surface the ray leaves is not tested where convexity
-    /// proves it cannot be met (leaving a plane, or a sphere's outside), and is met at
-    /// its directly computed far root where it can (leaving a sphere's inner surface).
-    /// Every other object is tested from the hit point itself.
+    /// proves it cannot be met, and is met at its directly computed far root where it
+    /// can.
+    ///
+    /// Convexity proves it when the ray leaves a plane or a sphere's outside; a ray
+    /// leaving a sphere's inner surface meets it at its far root. Every other object is tested from the hit point itself.
     Convex,
     /// The textbook fixed epsilon: the ray starts at `s = ε` (scene units) along its
-    /// unit direction and every object, the one it leaves included, is tested. Fails
-    /// both ways: shadow acne where the hit point's rounding error (≈ 2⁻²⁴ of the
+    /// unit direction and every object, the one it leaves included, is tested.
+    ///
+    /// It fails both ways: shadow acne where the hit point's rounding error (≈ 2⁻²⁴ of the
     /// coordinates' magnitude) exceeds ε, and light leaking under spheres that touch a
     /// floor where ε exceeds the occluder's chord.
     Epsilon(f32),

@@ -1,6 +1,8 @@
-//! How a frame's rows are traced: the sampling's strategy trait [`Rows`], with the
-//! one-ray [`CenterRows`]; and a ray's identity, which
-//! adaptive sampling compares between neighbouring pixels ([`Ident`], [`Fnv`]).
+//! How a frame's rows are traced, and a ray's identity.
+//!
+//! The sampling's strategy trait [`Rows`], with the one-ray [`CenterRows`]; and a ray's
+//! identity, which adaptive sampling compares between neighbouring pixels ([`Ident`],
+//! [`Fnv`]).
 
 use embedded_graphics::primitives::Rectangle;
 
@@ -21,9 +23,11 @@ pub(crate) trait Ident {
     fn fine(&mut self);
 }
 
-/// FNV-1a-style mixing of 32-bit words, from 0 (the identity of a ray that hits
-/// nothing: every word mixed in is non-zero, and an odd multiplier keeps it so), and
-/// whether the ray saw detail finer than a pixel.
+/// FNV-1a-style mixing of 32-bit words from 0, and whether the ray saw detail finer
+/// than a pixel.
+///
+/// 0 is the identity of a ray that hits nothing: every word mixed in is non-zero, and
+/// an odd multiplier keeps it so.
 pub(crate) struct Fnv(pub u32, pub bool);
 
 /// The identity of a ray that saw detail finer than a pixel: its pixel is an edge
@@ -71,7 +75,7 @@ pub(crate) trait Rows: Copy {
         X: RowTracer<'s, T, Sh>;
 }
 
-/// [`Sampling::Center`]: the scanline loop as it is.
+/// [`Sampling::Center`](crate::Sampling::Center): the scanline loop as it is.
 #[derive(Clone, Copy)]
 pub(crate) struct CenterRows;
 

@@ -1,10 +1,11 @@
-//! The scanline loop: per row, cut every sphere's silhouette with the scanline (the
-//! row's active spheres and their spans), then trace the row's pixels — form the ray,
-//! find the closest hit among the active spheres, shade — as the sink pulls them.
+//! The scanline loop: per row, cut every sphere's silhouette with the scanline, then
+//! trace the row's pixels as the sink pulls them.
 //!
-//! What happens after the closest sphere hit is a [`RowTracer`]: [`Lab1Row`] shades it
-//! with the seed's Lab #1 (the loop of a `Scene<N>`); the scene-features path
-//! (`lit.rs`) adds planes, lights, shadow rays and mirrors.
+//! The cuts give the row's active spheres and their spans; a pixel forms its ray, finds
+//! the closest hit among the active spheres and shades it. What happens after the
+//! closest sphere hit is a [`RowTracer`]: [`Lab1Row`] shades it with the lecture notes'
+//! Lab #1 (the loop of a `Scene<N>`); the scene-features path (`lit/row.rs`) adds
+//! planes, lights, shadow rays and mirrors.
 //!
 //! This is the only per-pixel code of the renderer. It adds, compares and calls the
 //! strategy types; everything it reads was computed once per frame (`frame.rs`) or
@@ -28,13 +29,17 @@ use crate::trace::options::Sample;
 use crate::trace::shade::{Lab1, Shader};
 
 /// What a row does with each pixel's closest sphere hit: the shading model, and any
-/// primitive beyond spheres. Built once per row.
+/// primitive beyond spheres.
+///
+/// Built once per row.
 pub(crate) trait RowTracer<'s, T: TestStrategy, Sh: Shader> {
     /// The colour of rays that hit nothing (the row's background runs).
     fn background(&self) -> Rgb888;
-    /// Column `i`'s ray `d` (in the union of the spans), given its closest sphere hit
-    /// (`index`, `t` in the frame's scaled units, sphere): the object hit (spheres
-    /// first, then whatever the tracer adds) with its `t`, and the pixel's colour.
+    /// Column `i`'s ray `d` (in the union of the spans), given its closest sphere hit:
+    /// the object hit with its `t`, and the pixel's colour.
+    ///
+    /// The sphere hit is `(index, t, sphere)`, `t` in the frame's scaled units; the
+    /// object numbers are the spheres' first, then whatever the tracer adds.
     fn pixel(
         &mut self,
         sphere_hit: Option<(usize, f32, &'s FrameSphere<T, Sh>)>,
@@ -42,7 +47,9 @@ pub(crate) trait RowTracer<'s, T: TestStrategy, Sh: Shader> {
         d: Vec3,
     ) -> (Option<(usize, f32)>, Rgb888);
     /// As [`Self::pixel`]'s colour, with the ray's identity for adaptive sampling
-    /// (`sampling.rs`): 0 where the ray hits nothing, otherwise a hash of what decides
+    /// (`sampling/mod.rs`).
+    ///
+    /// The identity is 0 where the ray hits nothing, otherwise a hash of what decides
     /// the colour discontinuously (the object, and for the features path the checker
     /// cell, the lights visible and what each reflected ray hit).
     fn identified(
@@ -107,6 +114,7 @@ impl<'s, T: TestStrategy> RowTracer<'s, T, Lab1> for Lab1Row {
 }
 
 /// Draws the frame's visible rows into the sink, one row (one iterator) at a time.
+///
 /// `tracer(j, &mut lo, &mut hi)` builds row `j`'s tracer and may widen the union
 /// `[lo, hi)` of the spheres' visible spans by its own primitives' spans.
 pub(crate) fn draw_rows<
@@ -205,8 +213,9 @@ pub(crate) fn activate<'s, const N: usize, S: Stepper, T: TestStrategy, Sh: Shad
 pub(crate) trait RowSink {
     type Error;
     fn row<R: PixelRow>(&mut self, area: Rectangle, row: R) -> Result<(), Self::Error>;
-    /// The frame cannot be drawn exactly: no row comes. A sink that can say so keeps
-    /// the reason; a `DrawTarget` keeps what it shows.
+    /// The frame cannot be drawn exactly: no row comes.
+    ///
+    /// A sink that can say so keeps the reason; a `DrawTarget` keeps what it shows.
     #[inline(always)]
     fn refused(&mut self, _why: FrameError) -> Result<(), Self::Error> {
         Ok(())
@@ -219,7 +228,9 @@ pub(crate) trait PixelRow {
     /// The row's pixels, left to right.
     fn samples(self) -> impl Iterator<Item = Sample>;
     /// The row's colours: background up to the union of the active spans, the traced
-    /// colours inside it, background after it. Outside the union no sphere can be hit,
+    /// colours inside it, background after it.
+    ///
+    /// Outside the union no sphere can be hit,
     /// so those pixels are not traced at all (the stepping still advances over them, so
     /// a traced pixel's direction is the one `samples` forms).
     fn color_runs(self) -> ColorRuns<impl Iterator<Item = Rgb888>>;
@@ -359,7 +370,9 @@ impl<'r, 's, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s
     }
 
     /// The next column's centre ray, exactly as [`Iterator::next`] traces it: its
-    /// identity ([`RowTracer::identified`]) and colour. Past the row's end: nothing hit.
+    /// identity ([`RowTracer::identified`]) and colour.
+    ///
+    /// Past the row's end: nothing hit.
     #[inline(always)]
     pub(crate) fn next_identified(&mut self) -> (u32, Rgb888) {
         let i = self.i;
@@ -377,7 +390,9 @@ impl<'r, 's, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s
     }
 
     /// The next column's centre colour, exactly as [`PixelRow::color_runs`] traces it
-    /// (background outside the union of the spans). Past the row's end: background.
+    /// (background outside the union of the spans).
+    ///
+    /// Past the row's end: background.
     #[inline(always)]
     pub(crate) fn next_color(&mut self) -> Rgb888 {
         let i = self.i;

@@ -1,7 +1,9 @@
-//! Shading: the colour of a hit, behind the `Shader` strategy type. Today the one
-//! model is the seed's Lab #1 (`Lab1`, zero-sized); a lit model (lights, shadow rays,
-//! mirrors) is another `Shader`, chosen per frame by the scene's type, so a scene
-//! without lights keeps this one's loop.
+//! Shading: the colour of a hit, behind the `Shader` strategy type.
+//!
+//! This module's model is the lecture notes' Lab #1 (`Lab1`, zero-sized); the features
+//! path's (lights, shadow rays, mirrors) is another `Shader` (`lit/consts.rs`'s
+//! `LitSphere`), chosen at compile time by the scene's type, so a scene without lights
+//! keeps this one's loop.
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
@@ -10,8 +12,10 @@ use crate::method::intersect::{Scale, SphereGeom};
 use crate::scene::sphere::Sphere;
 
 /// A shading model as a strategy type: its per-sphere constants, built by the frame
-/// with the geometry; the scanline loop is monomorphised over it. How a hit is shaded
-/// is the row tracer's (`scanline.rs`'s `Lab1Row`, `lit.rs`).
+/// with the geometry.
+///
+/// The scanline loop is monomorphised over it. How a hit is shaded is the row tracer's
+/// (`scanline.rs`'s `Lab1Row`, `lit/row.rs`'s `LitRow`).
 pub(crate) trait Shader {
     /// Per-frame, per-object constants (built once per frame with the geometry).
     type Object: Copy;
@@ -20,7 +24,7 @@ pub(crate) trait Shader {
     fn object(sphere: &Sphere, g: &SphereGeom, scale: Scale, w: Vec3) -> Self::Object;
 }
 
-/// The seed's Lab #1 shading ([`lab1`]) as a [`Shader`].
+/// The lecture notes' Lab #1 shading ([`lab1`]) as a [`Shader`].
 pub(crate) struct Lab1;
 
 /// [`Lab1`]'s per-sphere constants.
@@ -102,7 +106,7 @@ fn lab1_channels(c: [f32; 3], n_z: f32) -> Rgb888 {
 /// scene-features path's unlit scenes.
 ///
 /// Clamped with comparisons, not `max`/`min` (on a Cortex-M4 those are calls to libm's
-/// `fmaxf`/`fminf`, ~30 instructions per hit pixel) nor `clamp` (NaN would propagate):
+/// `fmaxf`/`fminf`) nor `clamp` (NaN would propagate):
 /// a NaN fails both tests and takes the 0.3 floor, exactly as `n_z.max(0.3).min(1.0)`
 /// does (tested below).
 #[inline(always)]
@@ -116,9 +120,10 @@ pub(crate) fn lab1_factor(n_z: f32) -> f32 {
     }
 }
 
-/// `round(channel × k)` for `k ∈ [0.3, 1]` and a channel in `0 … 255`: in
-/// `[0, 255.5]` before the truncating cast, so truncation through `i32` (one
-/// instruction) equals the saturating `as u8` and cannot overflow.
+/// `round(channel × k)` for `k ∈ [0.3, 1]` and a channel in `0 … 255`.
+///
+/// The sum is in `[0, 255.5]` before the truncating cast, so truncation through `i32`
+/// (one instruction) equals the saturating `as u8` and cannot overflow.
 #[inline(always)]
 fn scale(channel: f32, k: f32) -> u8 {
     (channel * k + 0.5) as i32 as u8

@@ -1,0 +1,141 @@
+//! The row tracer's shadow tests: whether a shadow ray ([`ShadowRay`]) is blocked, any
+//! hit, with the row's shadow spans and its last occluder per light.
+//!
+//! A row calls one test through a pointer chosen once per row ([`LitRow::shadow`]): the
+//! plain one ([`LitRow::occluded`]), or in a frame with ties one that sends the lights
+//! needing them to the exact path ([`LitRow::occluded_with_ties`]).
+
+use crate::math::SqrtFn;
+use crate::method::intersect::TestStrategy;
+use crate::trace::lit::consts::FrameLight;
+use crate::trace::lit::exact::{occluded_exact, Lamp};
+use crate::trace::lit::exit::{far_root, Exit};
+use crate::trace::lit::object::{LastOccluder, ObjectId};
+use crate::trace::lit::row::LitRow;
+use crate::trace::lit::shadow::ShadowRay;
+
+impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const P: usize, const D: usize>
+    LitRow<'_, '_, T, Q, O, N, L, P, D>
+{
+    /// Whether object `k` crosses the open segment of `ray` (its `from`/`inside` as for
+    /// [`Self::closest`]).
+    #[inline(always)]
+    pub(super) fn blocks(&self, k: ObjectId, ray: ShadowRay) -> bool {
+        let ShadowRay {
+            o,
+            l,
+            dist,
+            from,
+            inside,
+        } = ray;
+        let f = self.f;
+        if let Some(s) = f.spheres.get(k.index()) {
+            if !O::TESTS_SELF && k == from {
+                if !inside {
+                    return false;
+                }
+                let t = far_root(&s.geom, o, l, l.dot(l));
+                return t > 0.0 && t < dist;
+            }
+            // A segment wholly inside a sphere ends before its far root: `t < dist` fails.
+            T::ray::<Q>(&s.geom.seen_from(o), l, l.dot(l), dist).is_some()
+        } else if let Some(plane) = k
+            .index()
+            .checked_sub(f.spheres.len())
+            .and_then(|p| f.planes.get(p))
+        {
+            if !O::TESTS_SELF && k == from {
+                return false;
+            }
+            let t = plane.t_from(o, l);
+            t > 0.0 && t < dist
+        } else {
+            false
+        }
+    }
+
+    /// Whether the light's shadow ray is blocked, any hit.
+    ///
+    /// For a primary ray's hit on the first plane (`column` is its column), only the
+    /// spheres whose shadow span on this row holds the column can block it, then the
+    /// planes; otherwise the light's last occluder first, then every object until one
+    /// blocks. The literal baseline tests every object, as a closest-hit search would.
+    /// Any hit: the order of the tests changes no answer.
+    pub(super) fn occluded(&mut self, light: usize, ray: ShadowRay, column: Option<u32>) -> bool {
+        let f = self.f;
+        let n = f.spheres.len();
+        let count = n + f.planes.len();
+        if !f.any_hit {
+            let mut blocked = false;
+            for k in (0..count).map(ObjectId::new) {
+                blocked |= self.blocks(k, ray);
+            }
+            return blocked;
+        }
+        if let (Some(i), true, Some(row)) = (column, ray.from == ObjectId::new(n), f.shadow_rows.get(light)) {
+            for slot in row.spans.iter().take(row.count.get()) {
+                let (k, lo, len) = slot.get();
+                if i.wrapping_sub(lo) < len && self.blocks(k, ray) {
+                    return true;
+                }
+            }
+            return (n..count).map(ObjectId::new).any(|k| self.blocks(k, ray));
+        }
+        let cached = self.occluder.get(light).copied().unwrap_or(LastOccluder::NONE);
+        if let Some(c) = cached.get() {
+            if self.blocks(c, ray) {
+                return true;
+            }
+        }
+        for k in (0..count).map(ObjectId::new) {
+            if !cached.holds(k) && self.blocks(k, ray) {
+                if let Some(c) = self.occluder.get_mut(light) {
+                    *c = LastOccluder::of(k);
+                }
+                return true;
+            }
+        }
+        false
+    }
+
+    /// [`Self::occluded`] in a frame with ties: [`Self::occluded_exact`] for the lights
+    /// that need it.
+    #[inline(never)]
+    pub(super) fn occluded_with_ties(&mut self, light: usize, ray: ShadowRay, column: Option<u32>) -> bool {
+        if self.f.exact_lights & (1 << light.min(31)) != 0 {
+            self.occluded_exact(light, ray)
+        } else {
+            self.occluded(light, ray, column)
+        }
+    }
+
+    /// [`Self::occluded`] for a light whose shadow rays need the frame's ties
+    /// ([`Ties`]): its lamp lies on some object, or the frame has coincident objects.
+    ///
+    /// Every object is tested (no shadow span, no cached occluder): an object with a
+    /// lower-numbered twin is left out, the twin of the surface the ray leaves is that
+    /// surface, and an object the lamp lies on is decided by the side the segment
+    /// reaches the lamp from.
+    ///
+    /// [`Ties`]: crate::trace::lit::ties::Ties
+    #[inline(always)]
+    fn occluded_exact(&self, light: usize, ray: ShadowRay) -> bool {
+        let f = self.f;
+        let (Some(on_sphere), Some(on_plane), Some(at)) = (
+            f.ties.on_sphere.get(light),
+            f.ties.on_plane.get(light),
+            f.lights.get(light).map(FrameLight::at),
+        ) else {
+            return false;
+        };
+        occluded_exact::<T, Q>(
+            &self.objects(),
+            Lamp {
+                on_sphere,
+                on_plane,
+                at,
+            },
+            ray,
+        )
+    }
+}

@@ -39,7 +39,7 @@ rm -rf "$out"
 mkdir -p "$out"
 wasm-bindgen --target web --no-typescript --remove-name-section --remove-producers-section \
     --out-dir "$out/pkg" \
-    target/wasm32-unknown-unknown/release/embedded_raytracer_web.wasm
+    "${CARGO_TARGET_DIR:-target}/wasm32-unknown-unknown/release/embedded_raytracer_web.wasm"
 cp tools/web/www/* "$out/"
 
 wasm="$out/pkg/embedded_raytracer_web_bg.wasm"

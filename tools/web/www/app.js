@@ -73,7 +73,9 @@ const state = {
 // ---------------------------------------------------------------- the worker
 
 let worker;
+/// The id of the frame asked for and not yet drawn (false: none).
 let busy = false;
+/// Something changed while a frame was drawn: ask again when it is.
 let pending = false;
 /// The text the worker holds (null: a fresh worker holds none).
 let sentText = null;
@@ -117,7 +119,7 @@ function request() {
   // A fresh worker gets the last good scene first, so a text it refuses keeps that
   // scene (and its picture) playing.
   if (sentText === null && state.goodText !== null && state.text !== state.goodText) {
-    worker.postMessage({ ...message, text: state.goodText, quiet: true });
+    worker.postMessage({ ...message, text: state.goodText });
     sentText = state.goodText;
     message.id = nextId++;
   }
@@ -131,7 +133,8 @@ function request() {
 
 function onReply(reply) {
   if (reply.id !== busy) {
-    // The quiet reload of a fresh worker: its picture is the one shown.
+    // A fresh worker's reload of the last good scene: not painted, the picture on
+    // screen is that scene's already.
     if (reply.info) takeInfo(reply.info, state.goodText);
     return;
   }

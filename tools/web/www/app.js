@@ -662,25 +662,6 @@ $('share').addEventListener('click', shareLink);
 
 // ---------------------------------------------------------------- start
 
-/// For the browser test (tools/web/test): wait for the display, go to a frame, the
-/// PNG export's bytes.
-window.ertrace = {
-  whenIdle,
-  /// An edit drawn now, not after the quiet time.
-  textChanged,
-  show(frame) {
-    play(false);
-    state.frame = frame;
-    request();
-  },
-  async png(s) {
-    return new Uint8Array(await (await png(s)).arrayBuffer());
-  },
-  shareLink,
-  state,
-  view,
-};
-
 startWorker();
 let link = null;
 try {
@@ -701,3 +682,23 @@ syncPickers();
 updateTransport();
 request();
 requestAnimationFrame(tick);
+
+// For the browser test (tools/web/test): wait for the display, go to a frame, the
+// PNG export's bytes. Set once the first frame is asked for, so that waiting for the
+// display never returns before it.
+window.ertrace = {
+  whenIdle,
+  /// An edit drawn now, not after the quiet time.
+  textChanged,
+  show(frame) {
+    play(false);
+    state.frame = frame;
+    request();
+  },
+  async png(s) {
+    return new Uint8Array(await (await png(s)).arrayBuffer());
+  },
+  shareLink,
+  state,
+  view,
+};

@@ -18,7 +18,7 @@ use embedded_raytracer::{
     scene_file, Arithmetic, Camera, CameraParams, FrameError, FrameStats, Incremental, Method, ObjectRef,
     Render, Scene, Vec3,
 };
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 
 #[path = "../../../boards/rp2040/src/bin/simple/frame.rs"]
 mod rp2040_simple;

@@ -77,7 +77,7 @@
 //!    image and each sphere's constants (`frame.rs`), per row the spheres whose span
 //!    holds the row (`scanline.rs`), per pixel the closest hit, shaded (`shade.rs`:
 //!    Lab #1). A scene type with lights, planes or a reflection depth
-//!    (`Scene<N, L, P, D>`) takes the features path (`lit.rs`): Phong shading with a
+//!    (`Scene<N, L, P, D>`) takes the features path (`trace/lit/`): Phong shading with a
 //!    shadow ray per light, the planes, the reflection loop.
 //! 5. **Sampling** (`sampling/`): one ray per pixel, a grid, or extra rays only where
 //!    an edge can cross the pixel.

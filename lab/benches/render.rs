@@ -37,7 +37,7 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_raytracer::{Camera, Material, Method, Options, Render, Scene};
 
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 use standard::{FullSceneFile, FEATURE_SCENES, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES, SCENES};
 
 use embedded_raytracer_lab::slice_target;

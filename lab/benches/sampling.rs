@@ -17,7 +17,7 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_raytracer::{Camera, Render, Sampling, Scene};
 
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 
 use embedded_raytracer_lab::slice_target;
 use slice_target::SliceTarget;

@@ -33,7 +33,7 @@ use embedded_graphics_simulator::{BinaryColorTheme, OutputSettingsBuilder, Simul
 use embedded_raytracer::dither::DitherExt;
 use embedded_raytracer::{Camera, Render, Sampling, Scene};
 
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 
 /// The part of the 240×240 render shown enlarged: the red sphere's rim against the
 /// cyan sphere and the background, and the blue sphere's edge.

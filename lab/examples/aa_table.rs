@@ -23,7 +23,7 @@ use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_raytracer::{Camera, Sampling, Scene};
 
 use embedded_raytracer_lab::aa;
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 use standard::{FEATURE_SCENES, SCENES};
 
 fn main() {

@@ -18,7 +18,7 @@ use embedded_raytracer::{scene_file, Arithmetic, Method, Options, Render, Second
 use embedded_raytracer_lab::reference::sweeps::{LitPoint, SECONDARY};
 use embedded_raytracer_lab::reference::{self, sweeps};
 
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 use standard::{FEATURE_SCENES, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES, SCENES};
 
 fn main() -> ExitCode {

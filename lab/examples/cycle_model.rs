@@ -45,7 +45,7 @@
 
 use embedded_raytracer_lab::cycle_model;
 use embedded_raytracer_lab::qemu_output;
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 
 use std::collections::HashMap;
 use std::io::{BufRead, BufReader, Read};

@@ -12,7 +12,7 @@
 
 use std::time::Instant;
 
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 use standard::MAX_SPHERES;
 
 use embedded_graphics::{pixelcolor::BinaryColor, prelude::*};

@@ -28,7 +28,7 @@ use qemu_output::QemuOutput;
 use standard::{FEATURE_SCENES, SCENES};
 
 use embedded_raytracer_lab::scenes;
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 /// Pixels of a 240×240 frame.
 const PIXELS: f64 = 240.0 * 240.0;
 /// The STM32F405/407's maximum core clock.

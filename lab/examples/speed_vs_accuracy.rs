@@ -48,7 +48,7 @@ use plotters::prelude::*;
 
 use embedded_raytracer_lab::aa;
 use embedded_raytracer_lab::cycle_model;
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 use standard::{FEATURE_SCENES, MAX_SPHERES, SCENES};
 
 // ---------------------------------------------------------------------------------

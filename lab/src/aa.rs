@@ -3,8 +3,6 @@
 //! panel): every sampling choice of one scene traced, its error against
 //! `reference::aa::supersampled` in 8-bit levels (the largest channel difference per
 //! pixel), over all pixels and over the edge pixels, and its rays per pixel.
-//!
-//! Uses [`crate::standard`] for the scenes.
 
 #![allow(dead_code)]
 

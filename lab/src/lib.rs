@@ -5,8 +5,8 @@
 //!   method fails.
 //! - [`hash`]: [`hash::PixelHash`], the display-sized FNV-1a target whose hash the QEMU
 //!   firmware prints and the host recomputes.
-//! - [`scenes`]: the standard scenes (`scenes/*.toml`) compiled in, for firmware.
-//! - [`standard`] (host): the standard scenes' names and loading them from their files.
+//! - [`scenes`]: the standard scenes (`scenes/*.toml`) compiled in, for firmware (their
+//!   names and files: the `embedded-raytracer-scenes` crate).
 //! - [`aa`], [`cycle_model`], [`qemu_output`], [`slice_target`] (host): the
 //!   anti-aliasing measurement, the Cortex-M4 cycle model, the QEMU output parser and a
 //!   slice target for benchmarks, shared by the lab's examples, benches and tests.
@@ -29,5 +29,3 @@ pub mod qemu_output;
 pub mod reference;
 #[cfg(feature = "std")]
 pub mod slice_target;
-#[cfg(feature = "std")]
-pub mod standard;

@@ -363,7 +363,7 @@ pub trait EachScene {
 }
 
 /// Calls `work` on every standard scene, in the order of every table (the order of
-/// `lab/src/standard.rs`' `SCENES`).
+/// `embedded_raytracer_scenes::SCENES`).
 pub fn for_each(work: &mut impl EachScene) {
     work.scene("lab", &LAB, LAB_CAMERA);
     work.scene("far", &FAR, FAR_CAMERA);
@@ -373,7 +373,7 @@ pub fn for_each(work: &mut impl EachScene) {
 }
 
 /// Calls `work` on every standard scene with lights, a floor and mirrors, in the order
-/// of every table (`lab/src/standard.rs`' `FEATURE_SCENES`).
+/// of every table (`embedded_raytracer_scenes::FEATURE_SCENES`).
 pub fn for_each_feature(work: &mut impl EachScene) {
     work.scene("shadows", &SHADOWS, SHADOWS_CAMERA);
     work.scene("mirrors", &MIRRORS, MIRRORS_CAMERA);

@@ -142,7 +142,7 @@ axis! {
 
 axis! {
     /// Which arithmetic the pixel loop uses for a scene without lights, planes or
-    /// mirrors (the integer kernel in `integer/mod.rs`).
+    /// mirrors (the integer kernel in `integer/`).
     Arithmetic, "arithmetic" {
         /// IEEE `f32` with the method's stepping, sphere test and square root.
         F32 => "f32",

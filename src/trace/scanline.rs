@@ -47,7 +47,7 @@ pub(crate) trait RowTracer<'s, T: TestStrategy, Sh: Shader> {
         d: Vec3,
     ) -> (Option<(usize, f32)>, Rgb888);
     /// As [`Self::pixel`]'s colour, with the ray's identity for adaptive sampling
-    /// (`sampling/mod.rs`).
+    /// (`sampling/`).
     ///
     /// The identity is 0 where the ray hits nothing, otherwise a hash of what decides
     /// the colour discontinuously (the object, and for the features path the checker

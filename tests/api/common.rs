@@ -3,39 +3,47 @@
 
 #![allow(dead_code)]
 
-/// The standard scenes (`scenes/*.toml`), by name, as the lab's tables order them.
+// Scene files need the `std` feature; the list itself does not.
 #[cfg(feature = "std")]
-mod standard {
-    use embedded_raytracer::scene_file::{self, SceneFile};
+use embedded_raytracer::scene_file::{self, SceneFile};
 
-    /// The spheres-only scenes.
-    pub const SCENES: [&str; 5] = ["lab", "far", "grazing", "drift", "crowd"];
-    /// The scenes with lights, a floor and mirrors.
-    pub const FEATURE_SCENES: [&str; 2] = ["shadows", "mirrors"];
-    /// The sphere capacity the scene files are loaded with (every standard scene fits).
-    pub const MAX_SPHERES: usize = 256;
-    /// Every capacity a scene file may ask for.
-    pub type FullSceneFile = SceneFile<MAX_SPHERES, 8, 8, { embedded_raytracer::MAX_DEPTH as usize }>;
+/// The standard scenes' list (names, capacities, texts), read alone: the scenes crate
+/// that holds it depends on the library, which its own tests must not depend on.
+#[path = "../../scenes/src/list.rs"]
+mod standard;
 
-    /// The path of standard scene `name`.
-    pub fn path(name: &str) -> String {
-        format!("{}/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"))
-    }
+#[allow(unused_imports)]
+pub use standard::{FEATURE_SCENES, MAX_SPHERES, SCENES};
 
-    /// Spheres-only scene `name`, loaded from its file.
-    pub fn load(name: &str) -> SceneFile<MAX_SPHERES> {
-        scene_file::load(path(name)).unwrap_or_else(|e| panic!("{e}"))
-    }
+/// Every capacity a scene file may ask for.
+#[cfg(feature = "std")]
+pub type FullSceneFile = SceneFile<
+    MAX_SPHERES,
+    { standard::MAX_LIGHTS },
+    { standard::MAX_PLANES },
+    { embedded_raytracer::MAX_DEPTH as usize },
+>;
 
-    /// Any standard scene `name`, loaded with every capacity.
-    pub fn load_full(name: &str) -> FullSceneFile {
-        scene_file::load(path(name)).unwrap_or_else(|e| panic!("{e}"))
-    }
+/// Standard scene `name`, parsed from its text with the capacities `N`, `L`, `P`, `D`.
+#[cfg(feature = "std")]
+fn parse<const N: usize, const L: usize, const P: usize, const D: usize>(
+    name: &str,
+) -> SceneFile<N, L, P, D> {
+    let text = standard::text(name).unwrap_or_else(|| panic!("no standard scene `{name}`"));
+    scene_file::parse(text).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
+/// Spheres-only scene `name`.
 #[cfg(feature = "std")]
-#[allow(unused_imports)]
-pub use standard::{load, load_full, path, FEATURE_SCENES, MAX_SPHERES, SCENES};
+pub fn load(name: &str) -> SceneFile<MAX_SPHERES> {
+    parse(name)
+}
+
+/// Any standard scene `name`, with every capacity.
+#[cfg(feature = "std")]
+pub fn load_full(name: &str) -> FullSceneFile {
+    parse(name)
+}
 
 #[path = "helpers.rs"]
 mod helpers;

@@ -95,16 +95,16 @@ where
     result
 }
 
-/// The status line: the kernel, its frame rate and the share of the panel sent, or the
-/// error.
+/// The status line: the kernel, the frame rate of the last frame timed (`us`
+/// microseconds; `None` before the first, when no rate is shown) and the share of the
+/// panel sent, or the error.
 pub fn status<E: Debug>(
     drawn: &Result<(Arithmetic, FrameStats), Failed<E>>,
-    us: u64,
+    us: Option<u64>,
     pixels: u32,
     flush_errors: u32,
 ) -> heapless::String<256> {
     let mut s = heapless::String::new();
-    let tenths = 10_000_000 / us.max(1);
     let share = |n: u32| u64::from(n) * 100 / u64::from(pixels.max(1));
     // A `String` only fails when full; 256 bytes hold every message here.
     let written = match drawn {
@@ -113,8 +113,14 @@ pub fn status<E: Debug>(
                 Arithmetic::Integer => "int",
                 _ => "f32",
             };
-            let (fps, tenth, sent) = (tenths / 10, tenths % 10, share(stats.sent));
-            write!(s, "{kernel} {fps}.{tenth}fps {sent}%")
+            let sent = share(stats.sent);
+            match us {
+                Some(us) => {
+                    let tenths = 10_000_000 / us.max(1);
+                    write!(s, "{kernel} {}.{}fps {sent}%", tenths / 10, tenths % 10)
+                }
+                None => write!(s, "{kernel} {sent}%"),
+            }
         }
         Err(Failed::Motion(e)) => write!(s, "motion: {e}"),
         Err(Failed::Camera(e)) => write!(s, "camera: {e}"),

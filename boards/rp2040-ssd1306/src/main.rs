@@ -88,7 +88,9 @@ fn main() -> ! {
     let mut scene = scenes::CIRCLING.clone();
     let mut shown = embedded_raytracer::Incremental::new();
     let mut flush_errors = 0u32;
-    let mut last_us = 0u64;
+    // The time of the last frame, from its start to the end of its flush; none before
+    // the first has been timed.
+    let mut last_us = None;
     let mut k = 0u32;
     loop {
         let start = timer.get_counter().ticks();
@@ -103,7 +105,7 @@ fn main() -> ! {
             flush_errors = flush_errors.saturating_add(1);
             shown.invalidate();
         }
-        last_us = timer.get_counter().ticks().wrapping_sub(start);
+        last_us = Some(timer.get_counter().ticks().wrapping_sub(start));
         // The motion repeats after `frames()` frames exactly: counting within one
         // loop keeps every frame's time as exact as the first loop's.
         k = (k + 1) % film.animation.frames();

@@ -18,7 +18,7 @@ use embedded_raytracer::{
     scene_file, Arithmetic, Camera, CameraParams, FrameError, FrameStats, Incremental, Method, ObjectRef,
     Render, Scene, Vec3,
 };
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 
 #[path = "../../../boards/rp2040/src/bin/simple/frame.rs"]
 mod rp2040_simple;
@@ -316,7 +316,9 @@ fn ssd1306_draws_the_dithered_integer_render_of_every_frame() {
             Err(_) => panic!("frame {k}: not drawn"),
         },
         |panel, shown, k, drawn| {
-            let line = ssd1306::status::<Infallible>(&Ok(drawn), 900_000 + u64::from(k), 8_192, 0);
+            // As the firmware: no frame rate before a frame has been timed.
+            let us = (k != 0).then(|| 900_000 + u64::from(k));
+            let line = ssd1306::status::<Infallible>(&Ok(drawn), us, 8_192, 0);
             let Ok(()) = ssd1306::show(panel, shown, &line);
         },
     );
@@ -516,9 +518,9 @@ fn every_status_line_fits_and_draws() {
         esp32c3::status::<Infallible>(&Err(esp32c3::Failed::Camera(camera_error)), 1, px, 0),
         esp32c3::status::<Infallible>(&Err(esp32c3::Failed::Motion(motion_error)), 1, px, 3),
         rp2040_simple::status::<Infallible>(&Err(rp2040_simple::Failed::Motion(motion_error)), 1, px, 3),
-        ssd1306::status::<Infallible>(&Err(ssd1306::Failed::Motion(motion_error)), 1, 8_192, 3),
-        ssd1306::status::<Infallible>(&Err(ssd1306::Failed::Frame(far)), 1, 8_192, 3),
-        ssd1306::status::<Infallible>(&Err(ssd1306::Failed::Camera(camera_error)), 1, 8_192, 0),
+        ssd1306::status::<Infallible>(&Err(ssd1306::Failed::Motion(motion_error)), Some(1), 8_192, 3),
+        ssd1306::status::<Infallible>(&Err(ssd1306::Failed::Frame(far)), Some(1), 8_192, 3),
+        ssd1306::status::<Infallible>(&Err(ssd1306::Failed::Camera(camera_error)), None, 8_192, 0),
         rp2350::status::<Infallible>(&Err(rp2350::Failed::Frame(far)), 1, px, 3),
         rp2350::status::<Infallible>(&Err(rp2350::Failed::Camera(camera_error)), 1, px, 0),
         rp2350::status::<Infallible>(&Err(rp2350::Failed::Motion(motion_error)), 1, px, 0),
@@ -536,8 +538,11 @@ fn every_status_line_fits_and_draws() {
     );
     // The frame-rate lines fit one line of their panel (39 and 21 characters).
     assert!(lines[13].len() <= 39, "{}", lines[13]);
-    let oled_line = ssd1306::status::<Infallible>(&Ok((Arithmetic::Integer, stats)), 1_000, 8_192, 0);
+    let oled_line = ssd1306::status::<Infallible>(&Ok((Arithmetic::Integer, stats)), Some(1_000), 8_192, 0);
     assert!(oled_line.len() <= 21, "{oled_line}");
+    // Before the first frame has been timed the SSD1306 shows no frame rate.
+    let first_line = ssd1306::status::<Infallible>(&Ok((Arithmetic::Integer, stats)), None, 8_192, 0);
+    assert_eq!(first_line, "int 0%");
 
     // The longest line drawn: every line within the panel, nothing outside it; the
     // lines' rectangles go to `Incremental`, which has nothing to restore before a

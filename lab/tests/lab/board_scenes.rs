@@ -3,7 +3,7 @@
 //! every number of each copy equals the file's, so that no copy can drift from it.
 
 use embedded_raytracer::{CameraParams, Scene};
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 
 #[path = "../../../examples/stm32f407_st7789/scenes.rs"]
 mod root_example;

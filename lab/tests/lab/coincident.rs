@@ -9,7 +9,7 @@ use embedded_raytracer::{
 };
 use embedded_raytracer_lab::reference;
 
-use embedded_raytracer_lab::standard::{self, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
+use embedded_raytracer_scenes::{self as standard, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
 
 type Full = Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>;
 

@@ -17,7 +17,7 @@ use embedded_raytracer::{
 };
 use embedded_raytracer_lab::reference::{self, compare, Metrics};
 
-use embedded_raytracer_lab::standard::{FullSceneFile, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
+use embedded_raytracer_scenes::{FullSceneFile, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
 
 use crate::common::{self, load, load_full, trace, FEATURE_SCENES, SCENES};
 

@@ -18,7 +18,7 @@
 
 use embedded_raytracer_lab::qemu_output;
 use embedded_raytracer_lab::scenes;
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 
 use std::sync::OnceLock;
 

@@ -3,7 +3,7 @@
 //! type's capacities exactly what its file holds.
 
 use embedded_raytracer_lab::scenes;
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_raytracer::motion::Animation;

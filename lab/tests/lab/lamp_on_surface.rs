@@ -10,7 +10,7 @@ use embedded_graphics::prelude::Size;
 use embedded_raytracer::{Camera, Light, Method, Options, Render, Sampling, Scene, SecondaryOrigin, Vec3};
 use embedded_raytracer_lab::reference::{self, ReferenceImage};
 
-use embedded_raytracer_lab::standard::{self, FullSceneFile};
+use embedded_raytracer_scenes::{self as standard, FullSceneFile};
 
 const CONVEX: SecondaryOrigin = SecondaryOrigin::Convex;
 const EPS: SecondaryOrigin = SecondaryOrigin::TEXTBOOK;

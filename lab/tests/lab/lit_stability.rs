@@ -17,7 +17,7 @@ use embedded_raytracer::{Options, Render, SecondaryOrigin};
 use embedded_raytracer_lab::reference::sweeps::{self, LitErrors, LitPoint, SECONDARY};
 use embedded_raytracer_lab::reference::{self, why};
 
-use embedded_raytracer_lab::standard;
+use embedded_raytracer_scenes as standard;
 
 const CONVEX: SecondaryOrigin = SecondaryOrigin::Convex;
 const EPS: SecondaryOrigin = SecondaryOrigin::TEXTBOOK;

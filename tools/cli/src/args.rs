@@ -17,7 +17,7 @@ use embedded_raytracer::{
 };
 
 use crate::cost;
-use crate::standard;
+use embedded_raytracer_scenes as standard;
 
 /// The most tracing threads `--threads` takes.
 pub const MAX_THREADS: usize = 1024;

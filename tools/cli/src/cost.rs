@@ -16,7 +16,7 @@
 use embedded_graphics::geometry::Size;
 use embedded_raytracer::Sampling;
 
-use crate::standard::{FullSceneFile, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
+use embedded_raytracer_scenes::{FullSceneFile, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
 
 /// Nanoseconds per counted object test, the most measured (release build, one thread,
 /// the shared 2-core AMD EPYC VM of docs/cli.md), rounded up: 0.27 ms a pixel for 256

@@ -60,8 +60,8 @@ mod cost;
 mod png_out;
 mod sequence;
 mod signals;
-mod standard;
-use standard::FullSceneFile;
+
+use embedded_raytracer_scenes::FullSceneFile;
 
 fn run() -> Result<(), String> {
     let args = match args::Args::try_parse_from(std::env::args_os()) {

@@ -28,8 +28,8 @@ use embedded_raytracer::{
 };
 
 use crate::args::Args;
-use crate::standard::{FullSceneFile, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
 use crate::{destination, frame_message, png_out, signals, write_with, Destination};
+use embedded_raytracer_scenes::{FullSceneFile, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
 
 /// Whether the flags ask for a sequence rather than one frame.
 pub fn wanted(args: &Args) -> bool {

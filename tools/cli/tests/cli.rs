@@ -3,8 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-#[path = "../src/standard.rs"]
-mod standard;
+use embedded_raytracer_scenes as standard;
 
 /// The repository root: the scene files and the docs are named from there.
 const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");

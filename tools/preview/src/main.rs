@@ -94,8 +94,10 @@ use embedded_raytracer::{
 };
 
 mod play;
-mod standard;
-use standard::{FullSceneFile, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
+
+use embedded_raytracer_scenes::{
+    self as standard, FullSceneFile, MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES,
+};
 
 /// The difference view's reference: no accumulation, no cancellation, exact root (and
 /// the convex origin for secondary rays: no epsilon).

@@ -18,8 +18,8 @@ use embedded_raytracer::{
     Camera, FrameStats, Incremental, Options, Render,
 };
 
-use crate::standard::{MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
 use crate::{window_colors, Loaded, Model, View};
+use embedded_raytracer_scenes::{MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
 
 /// The span of recent frames the achieved frame rate is measured over.
 const RATE_WINDOW: Duration = Duration::from_secs(1);

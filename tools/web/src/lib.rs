@@ -8,10 +8,8 @@
 //! menus, each from the kernel's own tables. Nothing here reads a clock: the page
 //! times frames with the browser's (`std::time::Instant` panics on `wasm32`).
 
-mod display;
 mod player;
 mod screen;
-mod standard;
 mod view;
 
 pub use player::{FrameReport, LoadError, Player, SceneInfo, REFERENCE, SENT, TRACED};
@@ -19,7 +17,8 @@ pub use player::{FrameReport, LoadError, Player, SceneInfo, REFERENCE, SENT, TRA
 use embedded_raytracer::{Method, Sampling, SphereTest, Sqrt, Stepping};
 use wasm_bindgen::prelude::*;
 
-use display::Model;
+use embedded_raytracer_display::Model;
+use embedded_raytracer_scenes as standard;
 
 /// The standard scenes' names, in the menu's order.
 #[wasm_bindgen(js_name = sceneNames)]

@@ -17,8 +17,8 @@ use embedded_raytracer::{
 use wasm_bindgen::prelude::*;
 
 use crate::screen::Screen;
-use crate::standard::{MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
 use crate::view::{Orbit, View};
+use embedded_raytracer_scenes::{MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
 
 /// The difference view's reference: no accumulation, no cancellation, exact root (and
 /// the convex origin for secondary rays: no epsilon).

@@ -11,7 +11,7 @@ use embedded_graphics::pixelcolor::{BinaryColor, Gray2, Gray4, Gray8, Rgb565, Rg
 use embedded_graphics::prelude::*;
 use embedded_raytracer::dither::{dither, Bayer};
 
-use crate::display::Model;
+use embedded_raytracer_display::Model;
 
 /// A display model's pixels, as its colour type reads back into `Rgb888`, and the
 /// pixels the current frame sent.
@@ -103,5 +103,43 @@ pub fn show(model: Model, color: Rgb888, at: Point, bayer: Bayer) -> Rgb888 {
         Model::Gray4Dither => dither::<Gray4>(color, at, bayer).into(),
         Model::Gray2Dither => dither::<Gray2>(color, at, bayer).into(),
         Model::BinaryDither => dither::<BinaryColor>(color, at, bayer).into(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_raytracer_display::{Frame, Panel, Theme};
+    use embedded_raytracer_scenes as standard;
+
+    /// Converting the kernel's `Rgb888` frame pixel by pixel shows what the display
+    /// crate's panel of each model shows (drawn through the model's colour type and
+    /// dither), for both matrices and both themes.
+    #[test]
+    fn each_pixel_converted_is_the_panels() {
+        let lab = standard::load("lab");
+        let camera = lab.camera.params().with_size(Size::new(40, 30)).build().unwrap();
+        let frame = Frame::new(&lab.scene, &camera);
+        let mut rgb = Panel::new(Model::Rgb888, Bayer::Eight, camera.size());
+        rgb.paint(frame);
+        let image = rgb.shown(Theme::OledBlue);
+        for model in Model::ALL {
+            for bayer in [Bayer::Four, Bayer::Eight] {
+                let mut screen = Screen::new(camera.size(), model, bayer);
+                for y in 0..camera.size().height {
+                    screen.send(y, 0, camera.size().width, &image);
+                }
+                let mut panel = Panel::new(model, bayer, camera.size());
+                panel.paint(frame);
+                for theme in Theme::ALL {
+                    let shown: Vec<Rgb888> = screen
+                        .shown()
+                        .iter()
+                        .map(|&c| if model.is_binary() { theme.show(c) } else { c })
+                        .collect();
+                    assert!(shown == panel.shown(theme), "{model:?} {bayer:?} {theme:?}");
+                }
+            }
+        }
     }
 }

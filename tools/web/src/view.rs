@@ -8,7 +8,7 @@ use embedded_graphics::geometry::Size;
 use embedded_raytracer::dither::Bayer;
 use embedded_raytracer::{CameraParams, Method, Sampling, SecondaryOrigin, Vec3};
 
-use crate::display::{Model, Theme};
+use embedded_raytracer_display::{bayer, Model, Theme};
 
 /// The secondary-ray origins the page offers (the preview's `E` key): the default, the
 /// textbook epsilon, one below the hit points' rounding error at the standard scenes'
@@ -85,13 +85,7 @@ impl View {
             let bad = |what: &str| format!("{key}: `{value}` is not {what}");
             match key {
                 "display" => self.model = Model::from_name(value).ok_or_else(|| bad("a display model"))?,
-                "bayer" => {
-                    self.bayer = match value {
-                        "4" => Bayer::Four,
-                        "8" => Bayer::Eight,
-                        _ => return Err(bad("4 or 8")),
-                    }
-                }
+                "bayer" => self.bayer = bayer::from_name(value).ok_or_else(|| bad("4 or 8"))?,
                 "theme" => {
                     self.theme = Theme::from_name(value).ok_or_else(|| bad("oled-blue or oled-white"))?
                 }

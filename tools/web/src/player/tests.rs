@@ -1,7 +1,7 @@
 //! The player against the kernel's whole render, its errors and its view.
 
 use super::*;
-use crate::standard::TEXTS;
+use embedded_raytracer_scenes::TEXTS;
 
 fn text(name: &str) -> &'static str {
     TEXTS.iter().find(|(n, _)| *n == name).unwrap().1

@@ -7,12 +7,12 @@ use crate::common;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
+#[cfg(feature = "bench-baselines")]
+use embedded_raytracer::SphereTest;
 use embedded_raytracer::{
     Camera, Light, Material, Method, Options, Plane, Render, Scene, SceneError, SecondaryOrigin, Settings,
     SettingsError, Sphere, Vec3,
 };
-#[cfg(feature = "bench-baselines")]
-use embedded_raytracer::SphereTest;
 
 use common::Frame;
 

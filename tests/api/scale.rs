@@ -8,9 +8,9 @@
 use crate::common;
 
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
-use embedded_raytracer::{Render, Scene, Sphere, Vec3};
 #[cfg(feature = "std")]
 use embedded_raytracer::{CameraParams, Method, Stepping};
+use embedded_raytracer::{Render, Scene, Sphere, Vec3};
 
 #[cfg(feature = "std")]
 fn scaled<const N: usize>(scene: &Scene<N>, s: f32) -> Scene<N> {

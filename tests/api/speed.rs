@@ -6,12 +6,12 @@
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
-use embedded_raytracer::{
-    Camera, Light, Method, Options, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3,
-};
 use embedded_raytracer::AUTO_FD_CAPACITY;
 #[cfg(feature = "bench-baselines")]
 use embedded_raytracer::FD_ANCHOR_INTERVAL;
+use embedded_raytracer::{
+    Camera, Light, Method, Options, Render, Scene, Sphere, SphereTest, Sqrt, Stepping, Vec3,
+};
 
 use crate::common;
 use common::{load, random_case, shrink, Rng, Traced, SCENES};

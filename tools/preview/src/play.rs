@@ -7,19 +7,15 @@ use std::collections::VecDeque;
 use std::convert::Infallible;
 use std::time::{Duration, Instant};
 
-use embedded_graphics::{
-    pixelcolor::{BinaryColor, Gray2, Gray4, Gray8, Rgb565, Rgb888},
-    prelude::*,
-};
-use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
+use embedded_graphics::{pixelcolor::Rgb888, prelude::*};
 use embedded_raytracer::{
-    dither::{Bayer, DitherExt},
-    motion::Animation,
-    Camera, FrameStats, Incremental, Options, Render,
+    dither::Bayer, motion::Animation, Camera, FrameStats, Incremental, Options, Render,
 };
-
-use crate::{window_colors, Loaded, Model, View};
+use embedded_raytracer_display::{Model, Paint, Panel, Theme};
 use embedded_raytracer_scenes::{MAX_DEPTH, MAX_LIGHTS, MAX_PLANES, MAX_SPHERES};
+
+use crate::loading::Loaded;
+use crate::view::View;
 
 /// The span of recent frames the achieved frame rate is measured over.
 const RATE_WINDOW: Duration = Duration::from_secs(1);
@@ -137,50 +133,13 @@ impl Clock {
     }
 }
 
-/// The framebuffer of a display model: its own colour type, as the firmware's display
-/// holds it (a dithered model's is the undithered model's type).
-enum Framebuffer {
-    Rgb888(SimulatorDisplay<Rgb888>),
-    Rgb565(SimulatorDisplay<Rgb565>),
-    Gray8(SimulatorDisplay<Gray8>),
-    Gray4(SimulatorDisplay<Gray4>),
-    Gray2(SimulatorDisplay<Gray2>),
-    Binary(SimulatorDisplay<BinaryColor>),
-}
-
-impl Framebuffer {
-    fn new(model: Model, size: Size) -> Self {
-        match model {
-            Model::Rgb888 => Self::Rgb888(SimulatorDisplay::new(size)),
-            Model::Rgb565 => Self::Rgb565(SimulatorDisplay::new(size)),
-            Model::Gray8 => Self::Gray8(SimulatorDisplay::new(size)),
-            Model::Gray4 | Model::Gray4Dither => Self::Gray4(SimulatorDisplay::new(size)),
-            Model::Gray2 | Model::Gray2Dither => Self::Gray2(SimulatorDisplay::new(size)),
-            Model::Binary | Model::BinaryDither => Self::Binary(SimulatorDisplay::new(size)),
-        }
-    }
-
-    fn window_colors(&self, settings: &OutputSettings) -> Vec<Rgb888> {
-        match self {
-            Self::Rgb888(d) => window_colors(d, settings),
-            Self::Rgb565(d) => window_colors(d, settings),
-            Self::Gray8(d) => window_colors(d, settings),
-            Self::Gray4(d) => window_colors(d, settings),
-            Self::Gray2(d) => window_colors(d, settings),
-            Self::Binary(d) => window_colors(d, settings),
-        }
-    }
-}
-
-/// The display the frames are drawn on: the model's framebuffer, and what it shows as
-/// each scene type's `Incremental` remembers it.
+/// The display the frames are drawn on: the model's panel, and what it shows as each
+/// scene type's `Incremental` remembers it.
 pub struct Display {
     size: Size,
-    /// The model and Bayer matrix the framebuffer's pixels were drawn with.
-    model: Model,
-    bayer: Bayer,
-    framebuffer: Framebuffer,
-    /// A spheres-only scene's frames (the Lab #1 loop, as [`crate::shade`] draws it).
+    /// The framebuffer, of the model (and Bayer matrix) its pixels were drawn with.
+    panel: Panel,
+    /// A spheres-only scene's frames (the Lab #1 loop, as [`crate::view::shade`] draws it).
     spheres: Box<Incremental<MAX_SPHERES>>,
     /// The frames of a scene with lights, planes or mirrors.
     full: Box<Incremental<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>>,
@@ -190,9 +149,7 @@ impl Display {
     pub fn new(size: Size, model: Model, bayer: Bayer) -> Self {
         Self {
             size,
-            model,
-            bayer,
-            framebuffer: Framebuffer::new(model, size),
+            panel: Panel::new(model, bayer, size),
             spheres: Box::new(Incremental::new()),
             full: Box::new(Incremental::new()),
         }
@@ -209,74 +166,71 @@ impl Display {
     /// frame's full render through the model, bit for bit. A change of model (or of a
     /// dithered model's matrix) starts a new framebuffer, drawn whole.
     pub fn draw(&mut self, scene: &Loaded, camera: &Camera, view: &View) -> FrameStats {
-        if view.model != self.model || (view.model.is_dithered() && view.bayer != self.bayer) {
-            self.framebuffer = Framebuffer::new(view.model, self.size);
-            self.model = view.model;
-            self.bayer = view.bayer;
+        if !self.panel.shows(view.model, view.bayer) {
+            self.panel = Panel::new(view.model, view.bayer, self.size);
             self.invalidate();
         }
-        let (spheres, full) = (&mut *self.spheres, &mut *self.full);
-        let dithered = view.model.is_dithered();
-        let b = view.bayer;
-        match &mut self.framebuffer {
-            Framebuffer::Rgb888(d) => draw_scene(spheres, full, scene, camera, view, d),
-            Framebuffer::Rgb565(d) => draw_scene(spheres, full, scene, camera, view, d),
-            Framebuffer::Gray8(d) => draw_scene(spheres, full, scene, camera, view, d),
-            Framebuffer::Gray4(d) if dithered => {
-                draw_scene(spheres, full, scene, camera, view, &mut d.dithered_with(b))
-            }
-            Framebuffer::Gray4(d) => draw_scene(spheres, full, scene, camera, view, d),
-            Framebuffer::Gray2(d) if dithered => {
-                draw_scene(spheres, full, scene, camera, view, &mut d.dithered_with(b))
-            }
-            Framebuffer::Gray2(d) => draw_scene(spheres, full, scene, camera, view, d),
-            Framebuffer::Binary(d) if dithered => {
-                draw_scene(spheres, full, scene, camera, view, &mut d.dithered_with(b))
-            }
-            Framebuffer::Binary(d) => draw_scene(spheres, full, scene, camera, view, d),
-        }
+        self.panel.paint(Played {
+            spheres: &mut self.spheres,
+            full: &mut self.full,
+            scene,
+            camera,
+            view,
+        })
     }
 
-    /// The framebuffer in window colours (one a display pixel, row-major).
-    pub fn window_colors(&self, settings: &OutputSettings) -> Vec<Rgb888> {
-        self.framebuffer.window_colors(settings)
+    /// The colours the panel shows (one a display pixel, row-major).
+    pub fn shown(&self, theme: Theme) -> Vec<Rgb888> {
+        self.panel.shown(theme)
     }
 }
 
-/// [`Display::draw`] for one target: the render [`crate::shade`] would draw, through
-/// its scene type's `Incremental`. The other type's forgets the target: what it drew
-/// last is no longer shown.
-fn draw_scene<Tg>(
-    spheres: &mut Incremental<MAX_SPHERES>,
-    full: &mut Incremental<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>,
-    scene: &Loaded,
-    camera: &Camera,
-    view: &View,
-    target: &mut Tg,
-) -> FrameStats
-where
-    Tg: DrawTarget<Error = Infallible>,
-    Tg::Color: From<Rgb888>,
-{
-    let options = Options::DEFAULT.with_secondary(view.secondary);
-    match scene {
-        Loaded::Spheres(scene) => {
-            full.invalidate();
-            let render = Render::new(&**scene, camera)
-                .with_method(view.method)
-                .with_options(options)
-                .with_sampling(view.sampling);
-            let Ok(stats) = spheres.draw(&render, target);
-            stats
-        }
-        Loaded::Full(scene) => {
-            spheres.invalidate();
-            let render = Render::new(&**scene, camera)
-                .with_method(view.method)
-                .with_options(options)
-                .with_sampling(view.sampling);
-            let Ok(stats) = full.draw(&render, target);
-            stats
+/// [`Display::draw`]'s work on the panel: the render [`crate::view::shade`] would draw,
+/// through its scene type's `Incremental`. The other type's forgets the target: what it
+/// drew last is no longer shown.
+struct Played<'a> {
+    spheres: &'a mut Incremental<MAX_SPHERES>,
+    full: &'a mut Incremental<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>,
+    scene: &'a Loaded,
+    camera: &'a Camera,
+    view: &'a View,
+}
+
+impl Paint for Played<'_> {
+    type Output = FrameStats;
+
+    fn paint<Tg>(self, target: &mut Tg) -> FrameStats
+    where
+        Tg: DrawTarget<Error = Infallible>,
+        Tg::Color: From<Rgb888>,
+    {
+        let Played {
+            spheres,
+            full,
+            scene,
+            camera,
+            view,
+        } = self;
+        let options = Options::DEFAULT.with_secondary(view.secondary);
+        match scene {
+            Loaded::Spheres(scene) => {
+                full.invalidate();
+                let render = Render::new(&**scene, camera)
+                    .with_method(view.method)
+                    .with_options(options)
+                    .with_sampling(view.sampling);
+                let Ok(stats) = spheres.draw(&render, target);
+                stats
+            }
+            Loaded::Full(scene) => {
+                spheres.invalidate();
+                let render = Render::new(&**scene, camera)
+                    .with_method(view.method)
+                    .with_options(options)
+                    .with_sampling(view.sampling);
+                let Ok(stats) = full.draw(&render, target);
+                stats
+            }
         }
     }
 }

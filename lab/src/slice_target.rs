@@ -1,6 +1,6 @@
 //! A plain slice-backed Rgb565 frame buffer: what a firmware's DMA buffer looks like.
-//! Shared by `lab/benches/render.rs` and `lab/examples/speed_vs_accuracy.rs` (included with
-//! `#[path]`), so both time the render into the same target.
+//! Shared by `lab/benches/render.rs` and `lab/examples/speed_vs_accuracy/`, so both time
+//! the render into the same target.
 
 use std::convert::Infallible;
 

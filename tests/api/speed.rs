@@ -14,7 +14,9 @@ use embedded_raytracer::{
 };
 
 use crate::common;
-use common::{load, random_case, shrink, Rng, Traced, SCENES};
+#[cfg(feature = "bench-baselines")]
+use common::{random_case, Rng};
+use common::{load, shrink, Traced, SCENES};
 
 /// Every pixel of `scene` through `camera` with `method` and the given options.
 fn trace_with<const N: usize>(
@@ -44,6 +46,7 @@ fn trace_k<const N: usize>(scene: &Scene<N>, camera: &Camera, method: Method, k:
 
 /// The methods whose pixels do not depend on where a row's evaluation starts: all but
 /// the forward-differenced ones (their anchors sit at the span starts by design).
+#[cfg(feature = "bench-baselines")]
 fn span_invariant(m: &Method) -> bool {
     !matches!(m.sphere_test, SphereTest::ForwardDiff | SphereTest::Auto)
 }
@@ -101,7 +104,6 @@ fn culling_changes_no_pixel_on_random_scenes() {
     assert!(hits > 100_000, "only {hits} hits");
 }
 
-#[cfg(feature = "bench-baselines")]
 /// Pixels whose hit/miss differs, and pixels whose colour differs, between two traces.
 fn compare(a: &[Traced], b: &[Traced]) -> (usize, usize, u8) {
     let coverage = a

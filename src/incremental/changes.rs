@@ -224,7 +224,8 @@ impl Changes {
     ///
     /// # Errors
     ///
-    /// [`Render::draw_band`]'s.
+    /// [`Render::draw_band`]'s; a refused plan ([`Changes::refused`]) is
+    /// [`BandError::Frame`], as the render refuses that frame, though nothing is traced.
     // Inlined, as `Render::draw` is: with a constant method only its code is linked.
     #[inline(always)]
     pub fn draw_band<C, const N: usize, const L: usize, const P: usize, const D: usize>(
@@ -237,6 +238,10 @@ impl Changes {
         C: PixelColor + From<Rgb888>,
     {
         let (band, mut sink) = render.band(rows, buf)?;
+        // A refusal is the plan's: it has no strip, so no render refuses it again.
+        if let Some(why) = self.refused {
+            return Err(BandError::Frame(why));
+        }
         let clips = self
             .strips
             .iter()

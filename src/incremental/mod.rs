@@ -16,23 +16,31 @@
 //!    camera, the method, sampling, options and offset, the target's bounding box, the
 //!    background and settings, every light and plane, the number of spheres, the
 //!    frame's scale (its power of two) and whether it left far spheres out, the features
-//!    frame's ties (a lamp on a surface, coincident objects); for the integer kernel, its
+//!    frame's ties (a lamp on a surface, coincident objects); under adaptive sampling,
+//!    whether a Lab #1 frame takes its edges from the silhouettes or shares samples
+//!    between neighbours (two spheres that touch anywhere, or a sphere reaching the
+//!    eye's plane, switch every edge pixel of the frame); for the integer kernel, its
 //!    per-frame rule's decision and quantisation (pixel unit, focal length, shade
 //!    shift, length unit) — its spheres' regions are then the cuts its rows are culled
-//!    with.
+//!    with. A frame the render refuses is planned as a refusal, on every path.
 //! 2. **Each sphere whose bits changed** (`-0.0` and `0.0` differ): its old and its new
 //!    silhouette. With lights and shadows, also where the old and new shadows it casts on
 //!    the first plane under each light can be seen (the image of the disc of the plane
 //!    that holds each, enlarged as the features frame's culling of shadow rays is, and
 //!    for the stepping's direction error), and the silhouettes of the other spheres (on
 //!    which its shadow can fall); a second plane (whose shadow rays are not culled)
-//!    draws the whole frame. With a reflection depth, the silhouettes of every mirror
+//!    draws the whole frame, and so does the lecture notes' algebraic or geometric
+//!    sphere test (their shadow rays are far from exact, so their false shadows are not
+//!    where an exact shadow can be). With a reflection depth, the silhouettes of every mirror
 //!    sphere (a mirror can show anything); a mirror plane draws the whole frame.
 //! 3. **Sampling** widens each silhouette by its footprint: `Grid(n)`'s sub-pixel rays
 //!    lie within half a pixel of the centre (the silhouette's reach over the pixel's
 //!    rows, as anti-aliasing culls its sub-pixel rays, and half a column), and
 //!    `Adaptive(n)` decides a pixel from its neighbours' samples too (three pixels more
-//!    each way).
+//!    each way). Each silhouette's rows are those its footprint reaches, whether or not
+//!    a row's centre line cuts it (a sphere smaller than a pixel between two rows).
+//!    Where `Adaptive(n)` shares samples, a small silhouette makes every pixel meeting
+//!    its bounding box an edge pixel: that box too.
 //! 4. **What the display lost** ([`Incremental::invalidate`],
 //!    [`Incremental::invalidate_area`]).
 //!

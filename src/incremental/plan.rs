@@ -12,13 +12,14 @@ use crate::math::SqrtFn;
 use crate::method::dispatch::{dispatch, Visit};
 use crate::method::intersect::{Scale, SphereGeom, TestStrategy};
 use crate::method::stepping::Stepper;
-use crate::method::Arithmetic;
+use crate::method::{Arithmetic, SphereTest};
 use crate::render::Render;
-use crate::sampling::Sampling;
+use crate::sampling::{shares_samples, small_box, Sampling};
 use crate::scene::sphere::Sphere;
 use crate::scene::Scene;
 use crate::trace::lit::shadow::shadow_regions;
 use crate::trace::lit::ties::same_ties;
+use crate::trace::options::Options;
 
 use super::can_shadow::can_shadow;
 use super::{Changes, Incremental, STRIP_SETUP};
@@ -57,6 +58,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
                 scene,
                 camera,
                 sampling: render.sampling(),
+                options: render.options(),
             },
         );
         let Probed {
@@ -64,6 +66,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             culled,
             margin,
             step_err,
+            shares,
         } = match new {
             Ok(p) => p,
             Err(why) => return Changes::refusal(size, why),
@@ -79,12 +82,20 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
                 scene: &shown.scene,
                 camera,
                 sampling: render.sampling(),
+                options: render.options(),
             },
         );
         match old {
+            // Every frame-wide decision the render makes from the whole scene is compared:
+            // a sphere that moves can change the scale, the cone's culling, or whether
+            // adaptive sampling shares samples (which moves edge pixels of spheres that
+            // never moved).
             Ok(Probed {
-                scale: s, culled: c, ..
-            }) if s.0.to_bits() == scale.0.to_bits() && c == culled => {}
+                scale: s,
+                culled: c,
+                shares: sh,
+                ..
+            }) if s.0.to_bits() == scale.0.to_bits() && c == culled && sh == shares => {}
             _ => return full(),
         }
         let changed = |k: usize| shown.changed(scene, k);
@@ -99,8 +110,17 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         };
         let shadows = features && L > 0 && scene.settings().shadows;
         let mirrors = features && scene.max_depth() > 0;
+        // The shadow regions (`shadow_regions`, `can_shadow`) hold for a shadow test
+        // within about 2⁻²² of exact. The lecture notes' algebraic and geometric tests
+        // are not (they cancel squares of the shadow ray's length: far from exact from
+        // about 100 radii), so their false shadows can fall anywhere a shadow ray is
+        // cast: the whole frame.
+        let unbounded_shadows = matches!(
+            render.method().sphere_test,
+            SphereTest::Algebraic | SphereTest::Geometric
+        );
         if any_changed
-            && ((shadows && scene.planes().len() > 1)
+            && ((shadows && (scene.planes().len() > 1 || unbounded_shadows))
                 || (mirrors && scene.planes().iter().any(|p| p.material.reflect != 0.0)))
         {
             return full();
@@ -126,13 +146,21 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         };
         let mut ok = true;
         let add_sphere = |plan: &mut Changes, s: &Sphere| plan.push_silhouette(frame.of(s));
+        // Where samples are shared, every pixel whose footprint meets a small
+        // silhouette's box is an edge pixel, however far the box reaches beyond the
+        // ellipse and its pad: that box too (`small_box`, from the same geometry and
+        // culling silhouette as the frame's), for a changed sphere's old and new place.
+        let add_box = |plan: &mut Changes, s: &Sphere| {
+            let geom = SphereGeom::new(s.center, s.radius, camera.eye(), scale);
+            !shares || small_box(&geom, frame.of(s), camera).is_none_or(|b| plan.push_box(b))
+        };
         for (k, new_s) in scene.spheres().iter().enumerate() {
             if !changed(k) {
                 continue;
             }
-            ok &= add_sphere(&mut plan, new_s);
+            ok &= add_sphere(&mut plan, new_s) && add_box(&mut plan, new_s);
             if let Some(old_s) = shown.scene.spheres().get(k) {
-                ok &= add_sphere(&mut plan, old_s);
+                ok &= add_sphere(&mut plan, old_s) && add_box(&mut plan, old_s);
                 if shadows {
                     for s in [old_s, new_s] {
                         shadow_regions(scene, s, camera, (scale, step_err), |sil| {
@@ -170,7 +198,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
 }
 
 /// The frame-wide inputs a probe of the method's strategy types reports.
-struct Probed {
+pub(super) struct Probed {
     /// The frame's scale.
     scale: Scale,
     /// Whether the frame left far spheres out.
@@ -179,29 +207,43 @@ struct Probed {
     margin: Margin,
     /// The stepping's error bound, which each silhouette is enlarged by.
     step_err: f32,
+    /// Whether adaptive sampling shares samples between neighbours: a features frame
+    /// always, a Lab #1 frame as [`shares_samples`] decides.
+    shares: bool,
 }
 
 /// The frame's scale and the silhouettes' margins, as the render decides them.
-struct Probe<'a, const N: usize, const L: usize, const P: usize, const D: usize> {
-    scene: &'a Scene<N, L, P, D>,
-    camera: &'a Camera,
-    sampling: Sampling,
+pub(super) struct Probe<'a, const N: usize, const L: usize, const P: usize, const D: usize> {
+    pub(super) scene: &'a Scene<N, L, P, D>,
+    pub(super) camera: &'a Camera,
+    pub(super) sampling: Sampling,
+    pub(super) options: Options,
 }
 
 impl<const N: usize, const L: usize, const P: usize, const D: usize> Visit for Probe<'_, N, L, P, D> {
     type Output = Result<Probed, FrameError>;
     fn visit<S: Stepper, T: TestStrategy, Q: SqrtFn>(self) -> Self::Output {
         // Only a Lab #1 frame of one ray a pixel culls for its scale (as `lab1.rs` does).
-        let cull = !Scene::<N, L, P, D>::FEATURES && self.sampling == Sampling::Center;
+        let features = Scene::<N, L, P, D>::FEATURES;
+        let cull = !features && self.sampling == Sampling::Center;
         let step_err = S::error_bound(self.camera);
-        crate::trace::frame::frame_scale::<N, L, P, D>(self.scene, self.camera, step_err, cull).map(
-            |(scale, culled)| Probed {
-                scale,
-                culled,
-                margin: T::MARGIN,
-                step_err,
-            },
-        )
+        let (scale, culled) =
+            crate::trace::frame::frame_scale::<N, L, P, D>(self.scene, self.camera, step_err, cull)?;
+        let shares = matches!(self.sampling, Sampling::Adaptive(_))
+            && (features
+                || shares_samples::<N, L, P, D, S, T, Q>(
+                    self.scene,
+                    self.camera,
+                    self.options,
+                    (scale, culled),
+                ));
+        Ok(Probed {
+            scale,
+            culled,
+            margin: T::MARGIN,
+            step_err,
+            shares,
+        })
     }
 }
 

@@ -4,8 +4,10 @@
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
+use crate::method::dispatch::dispatch;
 use crate::render::Render;
 
+use super::plan::Probe;
 use super::{Changes, Incremental, STRIP_SETUP};
 
 impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental<N, L, P, D> {
@@ -14,7 +16,9 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
     ///
     /// Its frame-wide quantisation is equal in both frames, else the whole frame is
     /// drawn; the regions are each changed sphere's old and new cut (the columns its
-    /// rows are culled to).
+    /// rows are culled to). A frame the kernel's rule leaves to the `f32` method after
+    /// one it drew is drawn whole, or refused where the `f32` method refuses it: the
+    /// plan reports every refusal the render makes.
     // Inlined, as `Render::draw` is: with a constant method only its code is linked.
     #[inline(always)]
     pub(super) fn plan_integer<C>(
@@ -44,7 +48,19 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         match (old_key, new_key) {
             (None, None) => return None,
             (Some(a), Some(b)) if a == b => {}
-            _ => return Some(Changes::full(size)),
+            (_, Some(_)) => return Some(Changes::full(size)),
+            (Some(_), None) => {
+                let probe = Probe {
+                    scene,
+                    camera,
+                    sampling: render.sampling(),
+                    options,
+                };
+                return Some(match dispatch(render.method(), probe) {
+                    Ok(_) => Changes::full(size),
+                    Err(why) => Changes::refusal(size, why),
+                });
+            }
         }
         if let Some(stale) = self.stale {
             ok &= plan.push_rect(stale);

@@ -72,6 +72,13 @@ impl Area {
         self.x0 < o.x1 && o.x0 < self.x1 && self.y0 < o.y1 && o.y0 < self.y1
     }
 
+    /// Whether the two share no pixel but sit side by side in a row they share (one's
+    /// last column next to the other's first): their runs there can touch, two windows
+    /// where one does.
+    pub(super) fn abuts(self, o: Area) -> bool {
+        self.y0 < o.y1 && o.y0 < self.y1 && (self.x1 == o.x0 || o.x1 == self.x0)
+    }
+
     /// The smallest rectangle holding both.
     pub(super) fn bounding(self, o: Area) -> Area {
         Area {
@@ -155,18 +162,73 @@ impl Entry {
 impl Changes {
     /// Adds a silhouette (rule steps 2 and 3); `false` if it cannot be planned (not a
     /// bounded ellipse, or one region too many).
+    ///
+    /// Its rows: with one ray a pixel, those whose centre line cuts the ellipse
+    /// ([`Silhouette::rows`], exactly `row_span`'s). With a footprint (`pad > 0`) a row
+    /// can change where no centre line cuts the ellipse (one smaller than a pixel,
+    /// between two rows' centres, which their sub-pixel rays meet): so every row whose
+    /// band `j ± (pad + ½)` ([`Region::cut`]) can meet the ellipse's vertical extent,
+    /// the centre row `y0` ± the half-height `Silhouette::band_reach` cuts its band to.
+    /// That function misses the band only where `|j − y0|` exceeds the half-height plus
+    /// the band plus a relative `2⁻²⁰` slack, so the half-height and band widened by a
+    /// relative `2⁻¹⁶` and a row each way (for the `f32` rounding of `y0` and of the
+    /// ends) hold every row it reaches; `Region::cut` then gives each row its run.
     pub(super) fn push_silhouette(&mut self, sil: Silhouette) -> bool {
-        if sil.is_all() {
+        let Some(ellipse) = sil.get() else {
             return false;
+        };
+        // An ellipse with `h0 < 0` ([`Silhouette::NONE`]) has no row.
+        if ellipse.h0 < 0.0 {
+            return true;
         }
         let (height, pad) = (u32::from(self.height), u32::from(self.pad));
-        let (a, b) = sil.rows(height);
-        let rows = if pad == 0 || a >= b {
-            (a, b)
+        let rows = if pad == 0 {
+            sil.rows(height)
         } else {
-            (a.saturating_sub(pad + 1), b.saturating_add(pad + 1).min(height))
+            let reach = (sil.reach_consts().0 + pad as f32 + 0.5) * (1.0 + 1.0 / 65536.0) + 1.0;
+            let y0 = ellipse.y0i + ellipse.y0f;
+            let (a, b) = (libm::floorf(y0 - reach), libm::ceilf(y0 + reach) + 1.0);
+            // Clamped by comparisons: a NaN end is the image's.
+            let a = if a > 0.0 { a.min(height as f32) as u32 } else { 0 };
+            let b = if b < height as f32 {
+                b.max(0.0) as u32
+            } else {
+                height
+            };
+            (a, b)
         };
         self.push(Region::Ellipse(sil), rows)
+    }
+
+    /// Adds the pixels adaptive sampling's shared samples mark around a small
+    /// silhouette (`b`, the box `sampling::small_box` gives, image coordinates).
+    ///
+    /// Those are the pixels whose footprint `[i ± ½] × [j ± ½]` meets the box
+    /// (`mark_small`); a pixel more each way covers the rounding of those comparisons.
+    /// A NaN edge reaches the image's edge there, as it marks up to it. `false` if one
+    /// region too many.
+    pub(super) fn push_box(&mut self, b: [f32; 4]) -> bool {
+        let (width, height) = (f32::from(self.width), f32::from(self.height));
+        // Clamped by comparisons: a NaN end is the image's.
+        let lo = |v: f32, max: f32| {
+            let v = libm::floorf(v - 1.5);
+            if v > 0.0 {
+                v.min(max) as u32
+            } else {
+                0
+            }
+        };
+        let hi = |v: f32, max: f32| {
+            let v = libm::ceilf(v + 1.5) + 1.0;
+            if v < max {
+                v.max(0.0) as u32
+            } else {
+                max as u32
+            }
+        };
+        let (x0, x1) = (lo(b[0], width), hi(b[1], width));
+        let (y0, y1) = (lo(b[2], height), hi(b[3], height));
+        x0 >= x1 || y0 >= y1 || self.push_area(Area::new(x0, y0, x1, y1))
     }
 
     /// Adds the integer kernel's cut of a sphere's rows `rows`; `false` if one region
@@ -233,8 +295,9 @@ impl Changes {
             .is_ok()
     }
 
-    /// The traced rectangles: the regions' boxes, those that overlap merged into one,
-    /// until none does; then each region's rectangle, and the strips.
+    /// The traced rectangles: the regions' boxes, those that overlap or abut in a row
+    /// merged into one, until none does (runs of one rectangle that touch are one
+    /// window, `Changes::runs`); then each region's rectangle, and the strips.
     pub(super) fn merge(&mut self) {
         self.rects.clear();
         for e in &self.regions {
@@ -248,7 +311,7 @@ impl Changes {
                     let (Some(&ra), Some(&rb)) = (self.rects.get(a), self.rects.get(b)) else {
                         continue;
                     };
-                    if ra.meets(rb) {
+                    if ra.meets(rb) || ra.abuts(rb) {
                         if let Some(slot) = self.rects.get_mut(a) {
                             *slot = ra.bounding(rb);
                         }

@@ -23,6 +23,6 @@ mod span;
 
 pub use choice::{Sampling, SamplingError, SubSamples};
 pub(crate) use grid::GridRows;
-pub(crate) use shared::AdaptiveRows;
 pub use shared::ADAPTIVE_MAX_WIDTH;
-pub(crate) use span::SpanAdaptiveRows;
+pub(crate) use shared::{small_box, AdaptiveRows};
+pub(crate) use span::{shares_samples, SpanAdaptiveRows};

@@ -248,28 +248,46 @@ fn small_silhouettes<const N: usize, T: TestStrategy, Sh: Shader>(
 ) -> Vec<[f32; 4], N> {
     let mut small = Vec::new();
     for fs in frame.spheres {
-        // The sphere's size from its tight silhouette (the robust test's margin, no
-        // stepping error: the culling margins of the quadratic tests or of a far eye's
-        // stepping could make a sub-pixel sphere look large); the box from the culling
-        // ellipse, which contains every pixel a centre ray can hit it in (without
-        // culling, `Silhouette::ALL`, the tight one stands in).
-        let tight = crate::camera::span::Silhouette::new(
-            fs.geom.l,
-            crate::math::sqrt_exact(fs.geom.r2),
-            frame.camera,
-            crate::camera::span::Margin::Linear,
-            0.0,
-        )
-        .bounds();
-        let culled = fs.silhouette.bounds().or(tight);
-        let size = tight.or(culled).map(|(_, semi_minor)| semi_minor);
-        if let (Some((b, _)), Some(semi_minor)) = (culled, size) {
-            if !(semi_minor >= SMALL) {
-                let _ = small.push([b[0] - 1.0, b[1] + 1.0, b[2] - 1.0, b[3] + 1.0]);
-            }
+        if let Some(b) = small_box(&fs.geom, fs.silhouette, frame.camera) {
+            let _ = small.push(b);
         }
     }
     small
+}
+
+/// A sphere's box of the small silhouettes (`geom` and its culling silhouette `culled`
+/// in the frame's units), `[x0, x1, y0, y1]` in pixels: its culling ellipse's bounding
+/// box widened by one pixel, if its semi-minor axis is under [`SMALL`].
+///
+/// Every pixel whose footprint meets the box is an edge pixel (`mark_small`), however
+/// far the box reaches beyond the ellipse: an incremental frame redraws the box of a
+/// sphere that moved.
+pub(crate) fn small_box(
+    geom: &crate::method::intersect::SphereGeom,
+    culled: crate::camera::span::Silhouette,
+    camera: &crate::camera::Camera,
+) -> Option<[f32; 4]> {
+    // The sphere's size from its tight silhouette (the robust test's margin, no
+    // stepping error: the culling margins of the quadratic tests or of a far eye's
+    // stepping could make a sub-pixel sphere look large); the box from the culling
+    // ellipse, which contains every pixel a centre ray can hit it in (without
+    // culling, `Silhouette::ALL`, the tight one stands in).
+    let tight = crate::camera::span::Silhouette::new(
+        geom.l,
+        crate::math::sqrt_exact(geom.r2),
+        camera,
+        crate::camera::span::Margin::Linear,
+        0.0,
+    )
+    .bounds();
+    let culled = culled.bounds().or(tight);
+    let size = tight.or(culled).map(|(_, semi_minor)| semi_minor);
+    match (culled, size) {
+        (Some((b, _)), Some(semi_minor)) if !(semi_minor >= SMALL) => {
+            Some([b[0] - 1.0, b[1] + 1.0, b[2] - 1.0, b[3] + 1.0])
+        }
+        _ => None,
+    }
 }
 
 /// Marks row `r`'s pixels (columns from `i0`) whose footprint meets a small box.

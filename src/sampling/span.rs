@@ -122,6 +122,54 @@ fn edge_runs<const N: usize>(
     out
 }
 
+/// Whether a Lab #1 frame under [`Sampling::Adaptive`](super::Sampling::Adaptive)
+/// shares samples between neighbours ([`AdaptiveRows`]) instead of taking its edges
+/// from the silhouettes, decided exactly as [`SpanAdaptiveRows`]'s rows decide it.
+///
+/// One decision for the whole frame (a fast square root, or [`span_bands`] refusing:
+/// two spheres anywhere that touch, a sphere reaching the eye's plane), which moves the
+/// edge pixels of spheres that never moved; an incremental frame compares it. The
+/// frame's spheres are built by `Frame::new` from the same setup (scale, cone, stepping
+/// error) as `lab1.rs` builds them over the whole image: neither they nor `span_bands`
+/// depend on the clip.
+#[inline(never)]
+pub(crate) fn shares_samples<
+    const N: usize,
+    const L: usize,
+    const P: usize,
+    const D: usize,
+    S: Stepper,
+    T: TestStrategy,
+    Q: SqrtFn,
+>(
+    scene: &crate::scene::Scene<N, L, P, D>,
+    camera: &crate::camera::Camera,
+    options: crate::trace::options::Options,
+    (scale, culled): (crate::method::intersect::Scale, bool),
+) -> bool {
+    use crate::method::intersect::{Robust, AUTO_FD_CAPACITY};
+    if !Q::EXACT {
+        return true;
+    }
+    // `Auto` above its capacity limit is drawn with `Robust` or with forward
+    // differences in a smaller frame (`lab1.rs`): the same margin either way, so the
+    // same silhouettes and the same decision, on a smaller stack.
+    if T::AUTO && N > AUTO_FD_CAPACITY {
+        return shares_samples::<N, L, P, D, S, Robust, Q>(scene, camera, options, (scale, culled));
+    }
+    let mut spheres: Vec<FrameSphere<T, crate::trace::shade::Lab1>, N> = Vec::new();
+    let image = Rectangle::new(embedded_graphics::prelude::Point::zero(), camera.size());
+    let setup = crate::trace::frame::FrameSetup {
+        camera,
+        options,
+        step_err: S::error_bound(camera),
+        scale,
+        culled,
+    };
+    Frame::new::<N, N, L, P, D, S>(scene, setup, image, image.top_left, &mut spheres)
+        .is_some_and(|frame| span_bands::<N, S, T, crate::trace::shade::Lab1>(&frame).is_none())
+}
+
 impl Rows for SpanAdaptiveRows {
     const CENTER: bool = false;
     #[inline(always)]

@@ -9,6 +9,8 @@ mod camera;
 mod clip;
 mod common;
 mod incremental;
+mod incremental_regressions;
+mod incremental_sequences;
 mod intersect;
 mod lit;
 mod render;

@@ -14,9 +14,9 @@ use embedded_raytracer::{
 };
 
 use crate::common;
+use common::{load, shrink, Traced, SCENES};
 #[cfg(feature = "bench-baselines")]
 use common::{random_case, Rng};
-use common::{load, shrink, Traced, SCENES};
 
 /// Every pixel of `scene` through `camera` with `method` and the given options.
 fn trace_with<const N: usize>(

@@ -16,6 +16,7 @@
 #![no_std]
 #![no_main]
 
+mod fifo_spi;
 mod frame;
 #[path = "../../scenes.rs"]
 mod scenes;
@@ -73,7 +74,8 @@ fn main() -> ! {
         .gpio13
         .into_push_pull_output_in_state(hal::gpio::PinState::High);
 
-    let Ok(spi_device) = ExclusiveDevice::new_no_delay(spi, cs);
+    // Through the transmit FIFO (fifo_spi.rs): the wire runs back to back.
+    let Ok(spi_device) = ExclusiveDevice::new_no_delay(fifo_spi::FifoSpi(spi), cs);
     let mut buffer = [0u8; 512];
     let interface = SpiInterface::new(spi_device, dc, &mut buffer);
     let Ok(mut display) = Builder::new(ST7789, interface)

@@ -126,6 +126,10 @@ fn main() -> ! {
         if frame::show(&mut display, &mut shown, &line).is_err() {
             display_errors = display_errors.saturating_add(1);
         }
+        // The status line on the panel before the next frame starts.
+        if let Ok(mut bus) = bus.try_borrow_mut() {
+            bus.finish();
+        }
         // The motion repeats after `frames()` frames exactly: counting within one
         // loop keeps every frame's time as exact as the first loop's.
         k = (k + 1) % film.animation.frames();

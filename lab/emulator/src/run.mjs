@@ -1,13 +1,14 @@
 // Runs one board example's firmware in rp2040js for a number of frames of its main loop
 // and writes what the panel showed and when:
 //
-//   node src/run.mjs --board simple|ssd1306 --elf FIRMWARE --frames N --pictures M --out DIR
+//   node src/run.mjs --board simple|ssd1306 --elf FIRMWARE --frames N --pictures M --out DIR [--pc-part P]
 //
 // DIR/BOARD.json: the clock, the wire rate, per frame its cycles (the firmware's own
 // timing interval, the whole loop iteration, the part before the first byte of the
 // frame reached the display), the microseconds the firmware read from the timer, the
 // pixels or bytes sent; the cycles by function (the profile); rp2040js's warnings.
 // DIR/BOARD-K-*.raw: the first M frames' pictures (see `capture` below).
+// DIR/BOARD-pc.txt (with --pc-part): part P of the later frames by instruction address.
 //
 // The main loop of both examples reads the timer at the start of a frame and after it
 // (`timer.get_counter()`); the display's start-up before it reads the timer too (its

@@ -432,18 +432,19 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
     #[must_use]
     pub fn arithmetic(&self) -> Arithmetic {
         let full = Rectangle::new(Point::zero(), self.camera.size());
+        // The draw's own decision (`IntFrame::new`: the rule, then something visible),
+        // without the silhouettes the rule does not depend on.
         let integer = self.method.arithmetic == Arithmetic::Integer
             && self.integer_kind()
-            && integer::IntFrame::new(
-                heapless::Vec::<_, N>::new().as_mut_view(),
+            && integer::regions::<N>(
                 self.scene.spheres(),
-                self.scene.background(),
                 self.camera,
                 self.options,
-                full,
-                Point::zero(),
+                |_| false,
+                |_, _| {},
             )
-            .is_ok();
+            .is_some()
+            && crate::trace::frame::visible(self.camera.size(), Point::zero(), full).is_some();
         if integer {
             Arithmetic::Integer
         } else {

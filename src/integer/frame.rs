@@ -131,8 +131,9 @@ struct Plan {
 /// does not take the frame.
 ///
 /// For each sphere `pick` selects, the rows and the cut its rows are culled with are
-/// passed to `f`. What an incremental frame compares and re-traces; one buffer of `N`
-/// spheres, as the render's own.
+/// passed to `f` (the others' silhouettes are not computed). What an incremental frame
+/// compares and re-traces, and whether the integer kernel takes a frame; one buffer of
+/// `N` spheres, as the render's own.
 pub(crate) fn regions<const N: usize>(
     scene: &[Sphere],
     camera: &Camera,
@@ -141,7 +142,7 @@ pub(crate) fn regions<const N: usize>(
     mut f: impl FnMut((u32, u32), IntCut),
 ) -> Option<[i32; 4]> {
     let mut buf: Vec<IntSphere, N> = Vec::new();
-    let plan = plan(scene, camera, options, buf.as_mut_view())?;
+    let plan = plan(scene, camera, options, buf.as_mut_view(), &pick)?;
     for s in &buf {
         if pick(s.index) {
             f(s.rows, s.cut);
@@ -164,7 +165,7 @@ impl<'a> IntFrame<'a> {
         clip: Rectangle,
         offset: Point,
     ) -> Result<Self, Refusal> {
-        let plan = plan(scene, camera, options, buf).ok_or(Refusal::Bounds)?;
+        let plan = plan(scene, camera, options, buf, &|_| true).ok_or(Refusal::Bounds)?;
         // Clipped as the f32 frame is.
         let (i0, i1, j0, j1) = visible(camera.size(), offset, clip).ok_or(Refusal::Invisible)?;
         Ok(Self {
@@ -220,11 +221,18 @@ fn fit_exponent(x: f64, limit: f64) -> i32 {
 }
 
 /// The rule and the integer picture (this module's docs), or `None`.
+///
+/// Only the spheres `cull` selects get their silhouette's rows and cut (the others
+/// cull nothing, [`Silhouette::ALL`]): the rule's decision and quantisation do not
+/// depend on them, and a caller that needs only those skips the silhouettes' soft
+/// `f64`.
 fn plan(
     scene: &[Sphere],
     camera: &Camera,
     options: Options,
     spheres: &mut VecView<IntSphere>,
+    // Not generic: one copy of the rule's soft float for every caller.
+    cull: &dyn Fn(usize) -> bool,
 ) -> Option<Plan> {
     let (pw, ph) = (camera.pixel_width(), camera.pixel_height());
     // Square pixels only: x and y share one unit.
@@ -324,7 +332,7 @@ fn plan(
             return None;
         }
         let a2 = lxi * lxi - c;
-        let silhouette = if options.span_culling {
+        let silhouette = if options.span_culling && cull(index) {
             // A direction error of pw/16 enlarges the f32 silhouette by ≥ 1/8 pixel:
             // it covers the integer picture's 1/16.
             Silhouette::new(lv, s.radius, camera, Margin::Linear, pw / 16.0)

@@ -84,6 +84,10 @@ export class Pico {
     this.buckets = 8;
     this.bucket = 0;
     this.profile = new Float64Array(this.buckets * (this.fns.length + 1));
+    /** Cycles by flash halfword for one bucket (`pcBucket`), when `pcProfile()` asked:
+     * where inside a function the time goes. */
+    this.pcCycles = null;
+    this.pcBucket = -1;
 
     /** Called at each read of the timer's low word: (cycles, microseconds read). */
     this.onTimerRead = () => {};
@@ -164,6 +168,14 @@ export class Pico {
     return i2c;
   }
 
+  /** Counts the cycles of bucket `bucket` by instruction address too (`pcCycles`). */
+  pcProfile(bucket) {
+    this.pcBucket = bucket;
+    this.pcCycles = new Float64Array(this.fnAt.length);
+    /** Calls in that bucket: "callee caller" (indices into `fns`) → count. */
+    this.calls = new Map();
+  }
+
   /** Runs until `done()` (checked every instruction) or `limit` cycles pass. */
   run(done, limit) {
     const { mcu, fnAt, profile } = this;
@@ -187,6 +199,16 @@ export class Pico {
       this.instructions++;
       const fn = pc >= FLASH && pc < textEnd ? fnAt[(pc - FLASH) >> 1] : other;
       profile[this.bucket * stride + fn] += cycles;
+      if (this.bucket === this.pcBucket && fn !== other) {
+        this.pcCycles[(pc - FLASH) >> 1] += cycles;
+        // A call: the function's first instruction, the caller from the link register.
+        if (pc === this.fns[fn].start) {
+          const lr = (core.LR & ~1) - 2;
+          const from = lr >= FLASH && lr < textEnd ? fnAt[(lr - FLASH) >> 1] : other;
+          const key = `${fn} ${from}`;
+          this.calls.set(key, (this.calls.get(key) || 0) + 1);
+        }
+      }
       clock.tick(cycles * this.nanosPerCycle);
     }
   }

@@ -1,13 +1,14 @@
 // Runs one board example's firmware in rp2040js for a number of frames of its main loop
 // and writes what the panel showed and when:
 //
-//   node src/run.mjs --board simple|ssd1306 --elf FIRMWARE --frames N --pictures M --out DIR
+//   node src/run.mjs --board simple|ssd1306 --elf FIRMWARE --frames N --pictures M --out DIR [--pc-part P]
 //
 // DIR/BOARD.json: the clock, the wire rate, per frame its cycles (the firmware's own
 // timing interval, the whole loop iteration, the part before the first byte of the
 // frame reached the display), the microseconds the firmware read from the timer, the
 // pixels or bytes sent; the cycles by function (the profile); rp2040js's warnings.
 // DIR/BOARD-K-*.raw: the first M frames' pictures (see `capture` below).
+// DIR/BOARD-pc.txt (with --pc-part): part P of the later frames by instruction address.
 //
 // The main loop of both examples reads the timer at the start of a frame and after it
 // (`timer.get_counter()`); the display's start-up before it reads the timer too (its
@@ -29,6 +30,9 @@ const { values: args } = parseArgs({
     frames: { type: 'string', default: '12' },
     pictures: { type: 'string', default: '12' },
     out: { type: 'string' },
+    // Where the later frames' time goes by instruction: BOARD-pc.txt, the hottest
+    // addresses of one part (0: before the first window, 1: the windows, 2: after).
+    'pc-part': { type: 'string' },
   },
 });
 if (!args.board || !args.elf || !args.out) {
@@ -145,6 +149,8 @@ pico.onTimerRead = (cycles, us) => {
   }
 };
 
+if (args['pc-part'] !== undefined) pico.pcProfile(bucketOf(1, Number(args['pc-part'])));
+
 const started = Date.now();
 const cpu = process.cpuUsage();
 pico.run(() => loop !== null && reads.length - 1 - loop >= 2 * frames, 4e9);
@@ -205,6 +211,22 @@ for (let k = 0; k < pictures; k++) {
     if (!pic) throw new Error(`frame ${k}: the ${what} picture has pixels never written`);
     writeFileSync(join(args.out, `${args.board}-${k}-${what}.raw`), Buffer.from(pic.buffer, pic.byteOffset, pic.byteLength));
   }
+}
+if (pico.pcCycles) {
+  const rows = [];
+  pico.pcCycles.forEach((c, i) => {
+    if (c > 0) rows.push([c, 0x10000000 + 2 * i]);
+  });
+  rows.sort((a, b) => b[0] - a[0]);
+  const perFrame = (c) => (c / Math.max(1, frames - 1)).toFixed(0);
+  const text = rows.map(([c, at]) => `0x${at.toString(16)} ${perFrame(c)} ${pico.fns[pico.fnAt[(at - 0x10000000) >> 1]].name}`);
+  const name = (i) => (pico.fns[i] ? pico.fns[i].name : '(outside)');
+  const calls = [...pico.calls].sort((a, b) => b[1] - a[1]);
+  for (const [key, n] of calls) {
+    const [callee, caller] = key.split(' ').map(Number);
+    text.push(`calls ${perFrame(n)} ${name(callee)} <- ${name(caller)}`);
+  }
+  writeFileSync(join(args.out, `${args.board}-pc.txt`), `${text.join('\n')}\n`);
 }
 const ms = (c) => ((c / pico.clkSys) * 1e3).toFixed(1);
 console.log(

@@ -1,7 +1,8 @@
 //! The simple Pico example: one core, the integer kernel drawing `scenes/circling.toml`
 //! (three spheres circling, the library's motion; `../../scenes.rs`, the same as the
-//! two-core example's) straight into a 240×240 ST7789 through `mipidsi`, frame after
-//! frame through `Incremental`: only what the moving spheres can have changed is traced
+//! two-core example's) straight into a 240×240 ST7789 through `mipidsi` (its bytes
+//! sent by DMA while the core traces on: `dma_spi.rs`), frame after frame through
+//! `Incremental`: only what the moving spheres can have changed is traced
 //! and sent. Where the integer kernel's per-frame rule refuses a frame,
 //! the `f32` kernel draws it; the top line says which kernel drew the last frame, its
 //! frame rate and the share of the panel sent, or what went wrong.
@@ -16,16 +17,17 @@
 #![no_std]
 #![no_main]
 
+mod dma_spi;
 mod frame;
 #[path = "../../scenes.rs"]
 mod scenes;
 
+use core::cell::RefCell;
 use embedded_graphics::prelude::*;
-use embedded_hal_bus::spi::ExclusiveDevice;
 use mipidsi::{interface::SpiInterface, models::ST7789, options::ColorInversion, Builder};
 use panic_halt as _;
 use rp2040_hal::{
-    self as hal, clocks::Clock, fugit::RateExtU32, gpio::FunctionSpi, pac, Sio, Timer, Watchdog,
+    self as hal, clocks::Clock, dma::DMAExt, fugit::RateExtU32, gpio::FunctionSpi, pac, Sio, Timer, Watchdog,
 };
 
 /// The second-stage bootloader for the Pico's W25Q080 flash (`memory.x`).
@@ -73,9 +75,24 @@ fn main() -> ! {
         .gpio13
         .into_push_pull_output_in_state(hal::gpio::PinState::High);
 
-    let Ok(spi_device) = ExclusiveDevice::new_no_delay(spi, cs);
-    let mut buffer = [0u8; 512];
-    let interface = SpiInterface::new(spi_device, dc, &mut buffer);
+    // The bytes go out by DMA while the core traces on (dma_spi.rs): two chunk
+    // buffers, DMA channel 0.
+    let (Some(a), Some(b)) = (
+        cortex_m::singleton!(: [u8; dma_spi::CHUNK] = [0; dma_spi::CHUNK]),
+        cortex_m::singleton!(: [u8; dma_spi::CHUNK] = [0; dma_spi::CHUNK]),
+    ) else {
+        panic!("chunk buffers taken twice");
+    };
+    let ch = pac.DMA.split(&mut pac.RESETS).ch0;
+    let bus = RefCell::new(dma_spi::Bus::new(
+        ch,
+        spi,
+        [dma_spi::Chunk::new(a), dma_spi::Chunk::new(b)],
+        cs,
+        dc,
+    ));
+    let mut buffer = [0u8; dma_spi::CHUNK];
+    let interface = SpiInterface::new(dma_spi::Device(&bus), dma_spi::Dc(&bus), &mut buffer);
     let Ok(mut display) = Builder::new(ST7789, interface)
         .display_size(240, 240)
         .invert_colors(ColorInversion::Inverted) // IPS ST7789 panels are inverted
@@ -98,12 +115,20 @@ fn main() -> ! {
     loop {
         let start = timer.get_counter().ticks();
         let drawn = frame::frame(&mut display, &mut shown, &film, k, &mut scene);
+        // The frame ends on the panel: its last bytes off the wire.
+        if let Ok(mut bus) = bus.try_borrow_mut() {
+            bus.finish();
+        }
         let us = timer.get_counter().ticks().wrapping_sub(start);
         // Drawn over the picture; if the display cannot take it, nothing else can
         // show it: counted, and shown once it can.
         let line = frame::status(&drawn, us, size.width * size.height, display_errors);
         if frame::show(&mut display, &mut shown, &line).is_err() {
             display_errors = display_errors.saturating_add(1);
+        }
+        // The status line on the panel before the next frame starts.
+        if let Ok(mut bus) = bus.try_borrow_mut() {
+            bus.finish();
         }
         // The motion repeats after `frames()` frames exactly: counting within one
         // loop keeps every frame's time as exact as the first loop's.

@@ -2,8 +2,6 @@
 //! full render, bit for bit — every method, sampling, arithmetic and colour format,
 //! whole, offset and clipped — and they trace and send less than the whole frame.
 
-use std::convert::Infallible;
-
 use embedded_graphics::pixelcolor::{BinaryColor, Gray4, Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
@@ -13,61 +11,7 @@ use embedded_raytracer::{
 };
 
 use crate::common::Rng;
-
-/// A frame buffer of any colour, every pixel starting at `fill`; counts the pixels and
-/// `fill_contiguous` calls it gets, and keeps the calls' rectangles.
-#[derive(Clone, PartialEq)]
-struct Buffer<C> {
-    size: Size,
-    px: Vec<C>,
-    written: usize,
-    calls: usize,
-    windows: Vec<Rectangle>,
-}
-
-impl<C: PixelColor> Buffer<C> {
-    fn new(size: Size, fill: C) -> Self {
-        Self {
-            size,
-            px: vec![fill; (size.width * size.height) as usize],
-            written: 0,
-            calls: 0,
-            windows: Vec::new(),
-        }
-    }
-}
-
-impl<C: PixelColor> OriginDimensions for Buffer<C> {
-    fn size(&self) -> Size {
-        self.size
-    }
-}
-
-impl<C: PixelColor> DrawTarget for Buffer<C> {
-    type Color = C;
-    type Error = Infallible;
-    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(&mut self, pixels: I) -> Result<(), Infallible> {
-        let w = self.size.width as i32;
-        for Pixel(p, c) in pixels {
-            assert!(
-                (0..w).contains(&p.x) && (0..self.size.height as i32).contains(&p.y),
-                "drawn outside the target: {p:?}"
-            );
-            self.px[(p.y * w + p.x) as usize] = c;
-            self.written += 1;
-        }
-        Ok(())
-    }
-    fn fill_contiguous<I: IntoIterator<Item = C>>(
-        &mut self,
-        area: &Rectangle,
-        colors: I,
-    ) -> Result<(), Infallible> {
-        self.calls += 1;
-        self.windows.push(*area);
-        self.draw_iter(area.points().zip(colors).map(|(p, c)| Pixel(p, c)))
-    }
-}
+use crate::framebuffer::Buffer;
 
 const SIZE: Size = Size::new(40, 32);
 
@@ -152,12 +96,9 @@ where
         if f > 0 {
             motion(rng, &mut scene);
         }
-        let stats = match clip {
-            None => shown.draw(&render(&scene, camera, how), &mut display).unwrap(),
-            Some(c) => shown
-                .draw(&render(&scene, camera, how), &mut display.clipped(&c))
-                .unwrap(),
-        };
+        let stats = shown
+            .draw(&render(&scene, camera, how), display.clipped_to(clip))
+            .unwrap();
         assert!(stats.refused.is_none());
         if f > 0 {
             traced += stats.traced as usize;
@@ -165,10 +106,7 @@ where
         }
     }
     let mut full = Buffer::new(target_size, fill);
-    match clip {
-        None => render(&scene, camera, how).draw(&mut full).unwrap(),
-        Some(c) => render(&scene, camera, how).draw(&mut full.clipped(&c)).unwrap(),
-    }
+    render(&scene, camera, how).draw(full.clipped_to(clip)).unwrap();
     let diff = display.px.iter().zip(&full.px).filter(|(a, b)| a != b).count();
     assert_eq!(
         diff, 0,
@@ -352,7 +290,7 @@ fn check_windows<const N: usize, const L: usize, const P: usize, const D: usize>
 ) {
     let changes = planner.update(render);
     display.windows.clear();
-    let stats = shown.draw(render, &mut display.clipped(&clip)).unwrap();
+    let stats = shown.draw(render, display.clipped_to(Some(clip))).unwrap();
     let mut sent: Vec<_> = display
         .windows
         .iter()

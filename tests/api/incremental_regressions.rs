@@ -223,7 +223,7 @@ fn a_refused_frame_after_an_integer_frame_is_reported_as_refused() {
     assert!(matches!(why, FrameError::Magnitudes { .. }));
     for method in [Method::F32, Method::INTEGER] {
         let mut shown = embedded_raytracer::Incremental::new();
-        let mut display = crate::incremental_sequences::Screen::new(camera.size(), Rgb565::BLACK);
+        let mut display = crate::framebuffer::Buffer::new(camera.size(), Rgb565::BLACK);
         let render = |scene| Render::<2, Rgb565>::new(scene, &camera).with_method(method);
         assert!(shown.draw(&render(&first), &mut display).unwrap().full);
         let stats = shown.draw(&render(&refused), &mut display).unwrap();

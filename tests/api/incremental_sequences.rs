@@ -14,8 +14,6 @@
 //! enough sequences to find a failure of one sequence in a hundred with high
 //! probability.
 
-use std::convert::Infallible;
-
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
@@ -25,49 +23,7 @@ use embedded_raytracer::{
 };
 
 use crate::common::Rng;
-
-/// A frame buffer of any colour.
-#[derive(Clone, PartialEq, Debug)]
-pub struct Screen<C> {
-    pub size: Size,
-    pub px: Vec<C>,
-}
-
-impl<C: PixelColor> Screen<C> {
-    pub fn new(size: Size, fill: C) -> Self {
-        Self {
-            size,
-            px: vec![fill; (size.width * size.height) as usize],
-        }
-    }
-
-    /// The pixels that differ from `other`'s.
-    pub fn diff(&self, other: &Self) -> usize {
-        self.px.iter().zip(&other.px).filter(|(a, b)| a != b).count()
-    }
-}
-
-impl<C: PixelColor> OriginDimensions for Screen<C> {
-    fn size(&self) -> Size {
-        self.size
-    }
-}
-
-impl<C: PixelColor> DrawTarget for Screen<C> {
-    type Color = C;
-    type Error = Infallible;
-    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(&mut self, pixels: I) -> Result<(), Infallible> {
-        let w = self.size.width as i32;
-        for Pixel(p, c) in pixels {
-            assert!(
-                (0..w).contains(&p.x) && (0..self.size.height as i32).contains(&p.y),
-                "drawn outside the target: {p:?}"
-            );
-            self.px[(p.y * w + p.x) as usize] = c;
-        }
-        Ok(())
-    }
-}
+use crate::framebuffer::Buffer;
 
 /// Where the frames go: a display of `size`, the image at `offset` on it, drawn
 /// through `clip` (a part of the display) if any.
@@ -112,9 +68,9 @@ pub struct Check<C, const N: usize, const L: usize, const P: usize, const D: usi
     pub target: Target,
     fill: C,
     drawn: Incremental<N, L, P, D>,
-    display: Screen<C>,
+    display: Buffer<C>,
     banded: Incremental<N, L, P, D>,
-    image: Screen<C>,
+    image: Buffer<C>,
     band_rows: u32,
 }
 
@@ -127,9 +83,9 @@ where
             target,
             fill,
             drawn: Incremental::new(),
-            display: Screen::new(target.size, fill),
+            display: Buffer::new(target.size, fill),
             banded: Incremental::new(),
-            image: Screen::new(image, fill),
+            image: Buffer::new(image, fill),
             band_rows: band_rows.max(1),
         }
     }
@@ -139,22 +95,17 @@ where
     pub fn frame(&mut self, render: &Render<'_, N, C, L, P, D>) -> Result<Drift, String> {
         let render = render.with_offset(self.target.offset);
         let expected = render.check().err();
-        let stats = match self.target.clip {
-            None => self.drawn.draw(&render, &mut self.display),
-            Some(c) => self.drawn.draw(&render, &mut self.display.clipped(&c)),
-        }
-        .unwrap();
+        let stats = self
+            .drawn
+            .draw(&render, self.display.clipped_to(self.target.clip))
+            .unwrap();
         if stats.refused != expected || (expected.is_some() && (stats.full || stats.sent != 0)) {
             return Err(format!(
                 "draw: {stats:?}, but the frame's check says {expected:?}"
             ));
         }
-        let mut full = Screen::new(self.target.size, self.fill);
-        match self.target.clip {
-            None => render.draw(&mut full),
-            Some(c) => render.draw(&mut full.clipped(&c)),
-        }
-        .unwrap();
+        let mut full = Buffer::new(self.target.size, self.fill);
+        render.draw(full.clipped_to(self.target.clip)).unwrap();
         // A refused frame draws nothing: the display keeps the last frame.
         let drawn = if expected.is_none() {
             self.display.diff(&full)
@@ -199,7 +150,7 @@ where
             j0 = rows.end;
         }
         let banded = if expected.is_none() {
-            let mut full = Screen::new(self.image.size, self.fill);
+            let mut full = Buffer::new(self.image.size, self.fill);
             render.draw_band(0..height, &mut full.px).unwrap();
             self.image.diff(&full)
         } else {
@@ -213,7 +164,7 @@ where
     pub fn scribble(&mut self, area: Rectangle, color: C) {
         let on_target = Rectangle::new(area.top_left + self.target.offset, area.size);
         let drawn = on_target.intersection(&self.target.drawn_area());
-        self.display.fill_solid(&drawn, color).unwrap();
+        self.display.clipped_to(None).fill_solid(&drawn, color).unwrap();
         self.drawn.invalidate_area(on_target);
         self.image.fill_solid(&area, color).unwrap();
         self.banded.invalidate_area(area);

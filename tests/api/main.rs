@@ -8,6 +8,7 @@ mod band;
 mod camera;
 mod clip;
 mod common;
+mod framebuffer;
 mod incremental;
 mod incremental_regressions;
 mod incremental_sequences;

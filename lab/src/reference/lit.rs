@@ -795,8 +795,10 @@ fn shadow(
         let e_h = e_p + ROUND * (p.length() + pl.point.length());
         let (b, d) = if dist.is_finite() {
             // A point light: blocked iff the point and the light are strictly on opposite
-            // sides.
-            let light = p + l * dist;
+            // sides. The light's own position, not `p + l·dist`: from a point far from
+            // the plane that sum carries `p`'s rounding, which can exceed the lamp's
+            // height above the plane.
+            let light = lamp.unwrap_or(p + l * dist);
             let hl = (light - pl.point).dot(n);
             let e_hl = ROUND * (light_size + pl.point.length());
             (h * hl < 0.0, h.abs() <= e_h || hl.abs() <= e_hl)

@@ -100,6 +100,26 @@ impl FramePlane {
         (self.q - o).dot(self.n) / dir.dot(self.n)
     }
 
+    /// Whether the open segment from `o` to the lamp at `at` crosses the plane: its
+    /// equation `h(x) = (x − q)·n` has strictly opposite signs at the two ends.
+    ///
+    /// A sign decision, no intersection parameter: nothing is divided, and no `t` near
+    /// the segment's length is compared with it, so an end however far (a point 10²³
+    /// away and a lamp a few units from the plane) is decided as well as a near one.
+    /// **Bound:** each `h` is one rounded subtraction per coordinate and a three-term
+    /// dot product, within `γ₄·Σ|xᵢ − qᵢ|·|nᵢ| ≤ 4√3·u·|x − q|` of its exact value for
+    /// the `f32` end `x` (`u` = [`UNIT_ROUNDOFF`], to first order): the answer is the
+    /// exact one for the `f32` ends unless an end lies within that distance of the
+    /// plane, where the reference's band leaves the shadow undecided too. An end on the
+    /// plane (`h = 0`) does not cross: the segment is open.
+    ///
+    /// [`UNIT_ROUNDOFF`]: crate::math::UNIT_ROUNDOFF
+    #[inline(always)]
+    pub(super) fn separates(&self, o: Vec3, at: Vec3) -> bool {
+        let (h, side) = ((o - self.q).dot(self.n), (at - self.q).dot(self.n));
+        (h < 0.0 && side > 0.0) || (h > 0.0 && side < 0.0)
+    }
+
     /// The colour at `p` (eye-relative, scaled): the checker cell's.
     #[inline(always)]
     pub(super) fn color_at(&self, p: Vec3) -> [f32; 3] {
@@ -140,9 +160,28 @@ fn floor(x: f32) -> i32 {
 pub(super) enum FrameLight {
     /// Unit vector toward the light.
     Directional { l: Vec3, intensity: f32 },
-    /// Eye-relative, scaled position.
-    Point { p: Vec3, intensity: f32 },
+    /// Eye-relative, scaled position; `far`: the shadow segment's length beyond which
+    /// it is tested from the lamp ([`FAR_FACTOR`] times `|p|`).
+    Point { p: Vec3, intensity: f32, far: f32 },
 }
+
+/// How many times the lamp's distance from the eye a shadow segment must exceed before
+/// it is tested from the lamp's end: `2¹⁰` (a point light's `far`).
+///
+/// A segment longer than `2¹⁰·|P|` (`P` the lamp, eye-relative) starts at a surface
+/// point `o` more than `2¹⁰ − 1` times farther from the eye than the lamp. Its tests
+/// then run on the same open segment from the lamp's end (`LitRow::occluded_far`):
+/// a sphere from `P` toward `o`, where `C − o` would be rounded to `u·|o|` and can
+/// lose every sphere near the lamp; a plane by the signs of its equation at the two
+/// ends ([`FramePlane::separates`]), where the intersection parameter and the length
+/// it is compared with differ below `f32`'s resolution. **Bound:** from the lamp the
+/// line is known at a sphere to a few `u·(|P| + |C|)` plus `|C − P|` times the
+/// direction's error (a few `u` plus `o`'s own error over the segment's length), never
+/// more than a few times the test from `o`'s few `u·(|o| + |C|)` plus `|C − o|` times
+/// the same direction error, and `2¹⁰` times less for a sphere near the lamp. Below the
+/// limit a segment keeps the tests from `o` and their bits. A directional light has no
+/// lamp end and keeps the tests from `o`.
+pub(super) const FAR_FACTOR: f32 = 1024.0;
 
 impl FrameLight {
     /// The light's constants; `None` for a directional light without a direction.
@@ -152,10 +191,14 @@ impl FrameLight {
                 l: -direction.try_normalize()?,
                 intensity,
             },
-            Light::Point { position, intensity } => FrameLight::Point {
-                p: (position - eye) * scale.0,
-                intensity,
-            },
+            Light::Point { position, intensity } => {
+                let p = (position - eye) * scale.0;
+                FrameLight::Point {
+                    p,
+                    intensity,
+                    far: FAR_FACTOR * p.length(),
+                }
+            }
         })
     }
 
@@ -166,5 +209,56 @@ impl FrameLight {
             FrameLight::Point { p, .. } => p,
             FrameLight::Directional { .. } => Vec3::ZERO,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+
+    use super::{FrameLight, FramePlane};
+    use crate::math::sqrt_exact;
+    use crate::math::vec3::Vec3;
+    use crate::method::intersect::Scale;
+    use crate::scene::light::Light;
+    use crate::scene::plane::Plane;
+
+    /// A floor `y = 0`, a lamp 4.5 above it and surface points 10²²…10²³ away above the
+    /// lamp, in a frame scaled by `2⁻²⁹` (as a frame holding them is): the signs never
+    /// let the floor block, where the intersection parameter `t = (q − o)·n/(l·n)`
+    /// against the segment's length `t < dist` — two numbers whose difference is `4.5/y`
+    /// of them, far below `f32`'s resolution — blocks about one in seven.
+    #[test]
+    fn a_far_point_above_a_near_lamp_is_not_shadowed_by_the_floor() {
+        let s = 1.0 / 536_870_912.0; // 2⁻²⁹
+        let (eye, scale) = (Vec3::ZERO, Scale(s));
+        let plane = Plane::new(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), Rgb888::WHITE);
+        let floor = FramePlane::new(&plane, eye, scale).unwrap();
+        let lamp = FrameLight::new(&Light::point(Vec3::new(3.0, 4.5, 3.5), 1.0), eye, scale).unwrap();
+        let mut by_t = 0;
+        for k in 0..1000 {
+            let f = k as f32 / 1000.0;
+            let o = Vec3::new(1e22 * (f - 0.5), 1e22 + 9e22 * f, -4e23 - 1e23 * f) * s;
+            assert!(!floor.separates(o, lamp.at()), "{o:?}");
+            let to = lamp.at() - o;
+            let dist = sqrt_exact(to.dot(to));
+            let t = floor.t_from(o, to * (1.0 / dist));
+            by_t += usize::from(t > 0.0 && t < dist);
+        }
+        assert!(by_t > 50, "{by_t}");
+    }
+
+    /// The signs do block where the segment crosses: a point below the floor under the
+    /// lamp, near and far.
+    #[test]
+    fn a_point_below_the_floor_is_shadowed_by_it() {
+        let plane = Plane::new(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), Rgb888::WHITE);
+        let floor = FramePlane::new(&plane, Vec3::ZERO, Scale(1.0)).unwrap();
+        let at = Vec3::new(3.0, 4.5, 3.5);
+        for o in [Vec3::new(0.0, -1.0, 0.0), Vec3::new(1e20, -1e19, -1e20)] {
+            assert!(floor.separates(o, at), "{o:?}");
+        }
+        // An end on the plane does not cross: the segment is open.
+        assert!(!floor.separates(Vec3::new(5.0, 0.0, 1.0), at));
     }
 }

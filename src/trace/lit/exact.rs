@@ -35,6 +35,11 @@ pub(super) struct Objects<'a, T: TestStrategy> {
     ///
     /// [`Exit::TESTS_SELF`]: crate::trace::lit::exit::Exit::TESTS_SELF
     pub(super) tests_self: bool,
+    /// The lamp of a shadow segment beyond the light's far limit ([`FAR_FACTOR`]): its
+    /// spheres are tested from this end, its planes by the signs at both ends.
+    ///
+    /// [`FAR_FACTOR`]: crate::trace::lit::consts::FAR_FACTOR
+    pub(super) far: Option<Vec3>,
 }
 
 impl<T: TestStrategy> Objects<'_, T> {
@@ -50,7 +55,8 @@ impl<T: TestStrategy> Objects<'_, T> {
         twin.copied().unwrap_or(k)
     }
 
-    /// [`LitRow::blocks`], the exit's flag read at run time.
+    /// [`LitRow::blocks`], the exit's flag read at run time; from the lamp's end for a
+    /// segment beyond the far limit ([`Self::far`]).
     ///
     /// [`LitRow::blocks`]: crate::trace::lit::row::LitRow::blocks
     #[inline(always)]
@@ -70,7 +76,11 @@ impl<T: TestStrategy> Objects<'_, T> {
                 let t = far_root(&s.geom, o, l, l.dot(l));
                 return t > 0.0 && t < dist;
             }
-            T::ray::<Q>(&s.geom.seen_from(o), l, l.dot(l), dist).is_some()
+            match self.far {
+                // The same open segment, from the lamp toward `o`.
+                Some(at) => T::ray::<Q>(&s.geom.seen_from(at), -l, l.dot(l), dist).is_some(),
+                None => T::ray::<Q>(&s.geom.seen_from(o), l, l.dot(l), dist).is_some(),
+            }
         } else if let Some(plane) = k
             .index()
             .checked_sub(self.spheres.len())
@@ -79,8 +89,13 @@ impl<T: TestStrategy> Objects<'_, T> {
             if !self.tests_self && k == from {
                 return false;
             }
-            let t = plane.t_from(o, l);
-            t > 0.0 && t < dist
+            match self.far {
+                Some(at) => plane.separates(o, at),
+                None => {
+                    let t = plane.t_from(o, l);
+                    t > 0.0 && t < dist
+                }
+            }
         } else {
             false
         }

@@ -3,12 +3,13 @@
 //!
 //! A row calls one test through a pointer chosen once per row ([`LitRow::shadow`]): the
 //! plain one ([`LitRow::occluded`]), or in a frame with ties one that sends the lights
-//! needing them to the exact path ([`LitRow::occluded_with_ties`]).
+//! needing them to the exact path ([`LitRow::occluded_with_ties`]). A point light's
+//! segment beyond its far limit takes [`LitRow::occluded_far`] instead.
 
 use crate::math::SqrtFn;
 use crate::method::intersect::TestStrategy;
 use crate::trace::lit::consts::FrameLight;
-use crate::trace::lit::exact::{occluded_exact, Lamp};
+use crate::trace::lit::exact::{occluded_exact, Lamp, Objects};
 use crate::trace::lit::exit::{far_root, Exit};
 use crate::trace::lit::object::{LastOccluder, ObjectId};
 use crate::trace::lit::row::LitRow;
@@ -107,6 +108,39 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
         } else {
             self.occluded(light, ray, column)
         }
+    }
+
+    /// [`Self::occluded`] for a point light's segment longer than its far limit
+    /// ([`FAR_FACTOR`]): every object tested from the lamp's end, ties decided exactly.
+    ///
+    /// Out of line and cold: no standard scene has such a segment, and the row's own
+    /// tests keep their code and bits.
+    ///
+    /// [`FAR_FACTOR`]: crate::trace::lit::consts::FAR_FACTOR
+    #[cold]
+    #[inline(never)]
+    pub(super) fn occluded_far(&self, light: usize, ray: ShadowRay) -> bool {
+        let f = self.f;
+        let (Some(on_sphere), Some(on_plane), Some(at)) = (
+            f.ties.on_sphere.get(light),
+            f.ties.on_plane.get(light),
+            f.lights.get(light).map(FrameLight::at),
+        ) else {
+            return false;
+        };
+        let objects = Objects {
+            far: Some(at),
+            ..self.objects()
+        };
+        occluded_exact::<T, Q>(
+            &objects,
+            Lamp {
+                on_sphere,
+                on_plane,
+                at,
+            },
+            ray,
+        )
     }
 
     /// [`Self::occluded`] for a light whose shadow rays need the frame's ties

@@ -173,6 +173,7 @@ impl<
             sphere_twin: &f.ties.sphere_twin,
             plane_twin: &f.ties.plane_twin,
             tests_self: O::TESTS_SELF,
+            far: None,
         }
     }
 }

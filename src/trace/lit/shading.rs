@@ -95,12 +95,16 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
         };
         let (mut diffuse, mut spec) = (0.0f32, 0.0f32);
         for (index, light) in f.lights.iter().enumerate() {
-            let (l, dist, intensity) = match *light {
-                FrameLight::Directional { l, intensity } => (l, f32::INFINITY, intensity),
-                FrameLight::Point { p: at, intensity } => {
+            let (l, dist, intensity, far) = match *light {
+                FrameLight::Directional { l, intensity } => (l, f32::INFINITY, intensity, f32::INFINITY),
+                FrameLight::Point {
+                    p: at,
+                    intensity,
+                    far,
+                } => {
                     let to = at - p;
                     let dist = sqrt_exact(to.dot(to));
-                    (to * (1.0 / dist), dist, intensity)
+                    (to * (1.0 / dist), dist, intensity, far)
                 }
             };
             let nl = s.n.dot(l);
@@ -118,7 +122,12 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
                     from: k,
                     inside: s.inside,
                 };
-                let blocked = (self.shadow)(self, index, ray, column);
+                // Beyond the far limit the segment is tested from the lamp's end.
+                let blocked = if dist > far {
+                    self.occluded_far(index, ray)
+                } else {
+                    (self.shadow)(self, index, ray, column)
+                };
                 if blocked {
                     continue;
                 }
@@ -178,12 +187,16 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
         };
         let (mut diffuse, mut spec) = (0.0f32, 0.0f32);
         for (index, light) in f.lights.iter().enumerate() {
-            let (l, dist, intensity) = match *light {
-                FrameLight::Directional { l, intensity } => (l, f32::INFINITY, intensity),
-                FrameLight::Point { p: at, intensity } => {
+            let (l, dist, intensity, far) = match *light {
+                FrameLight::Directional { l, intensity } => (l, f32::INFINITY, intensity, f32::INFINITY),
+                FrameLight::Point {
+                    p: at,
+                    intensity,
+                    far,
+                } => {
                     let to = at - p;
                     let dist = sqrt_exact(to.dot(to));
-                    (to * (1.0 / dist), dist, intensity)
+                    (to * (1.0 / dist), dist, intensity, far)
                 }
             };
             let nl = s.n.dot(l);
@@ -201,7 +214,12 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
                     from: k,
                     inside: s.inside,
                 };
-                let blocked = (self.shadow)(self, index, ray, column);
+                // Beyond the far limit the segment is tested from the lamp's end.
+                let blocked = if dist > far {
+                    self.occluded_far(index, ray)
+                } else {
+                    (self.shadow)(self, index, ray, column)
+                };
                 // Which lights reach the surface: a shadow boundary is an edge.
                 id.mix(2 * index as u32 + 1 + u32::from(blocked));
                 if blocked {

@@ -24,12 +24,10 @@ use crate::common::{self, load, load_full, trace, FEATURE_SCENES, SCENES};
 /// A render of a scene of the standard files' full type.
 type Full<'a> = Render<'a, MAX_SPHERES, Rgb888, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>;
 
-/// `file`'s scene with its last light replaced by `light`.
-fn with_last_light(
-    file: &FullSceneFile,
-    light: Light,
+/// `scene`'s background, settings, spheres and planes, without its lights.
+fn unlit(
+    scene: &Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>,
 ) -> Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH> {
-    let scene = &file.scene;
     let mut out = Scene::new(scene.background());
     out.set_settings(scene.settings()).unwrap();
     for s in scene.spheres() {
@@ -38,6 +36,16 @@ fn with_last_light(
     for p in scene.planes() {
         out.push_plane(*p).unwrap();
     }
+    out
+}
+
+/// `file`'s scene with its last light replaced by `light`.
+fn with_last_light(
+    file: &FullSceneFile,
+    light: Light,
+) -> Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH> {
+    let scene = &file.scene;
+    let mut out = unlit(scene);
     let n = scene.lights().len();
     for l in &scene.lights()[..n - 1] {
         out.push_light(*l).unwrap();
@@ -387,14 +395,7 @@ fn lit_far_base(
 ) -> (Scene<MAX_SPHERES, MAX_LIGHTS, MAX_PLANES, MAX_DEPTH>, Camera) {
     let file = load_full("shadows");
     let scene = &file.scene;
-    let mut out = Scene::new(scene.background());
-    out.set_settings(scene.settings()).unwrap();
-    for s in scene.spheres() {
-        out.push(*s).unwrap();
-    }
-    for p in scene.planes() {
-        out.push_plane(*p).unwrap();
-    }
+    let mut out = unlit(scene);
     let sun = *scene
         .lights()
         .iter()

@@ -7,6 +7,7 @@ use core::convert::Infallible;
 use embedded_graphics::{
     pixelcolor::{BinaryColor, Gray2, Gray4, Gray8, Rgb565, Rgb888},
     prelude::*,
+    primitives::Rectangle,
 };
 use embedded_raytracer::{
     dither::{Bayer, DitherExt},
@@ -22,7 +23,8 @@ pub trait Paint {
     /// What the work returns (statistics of the frame, or nothing).
     type Output;
 
-    /// Draws on `target`, whose colour type is the model's (or the dither's `Rgb888`).
+    /// Draws on `target`: [`Panel::paint`] passes an `Rgb888` view of the panel that
+    /// converts to the model's colour type.
     fn paint<T>(self, target: &mut T) -> Self::Output
     where
         T: DrawTarget<Error = Infallible>,
@@ -126,20 +128,16 @@ impl Panel {
 
     /// Runs `work` on the panel through its model: on the framebuffer, or on the
     /// kernel's ordered dither in front of it.
+    ///
+    /// The work sees one `Rgb888` view of the panel whatever the model, so it is built
+    /// once, not once per colour type; the view converts each call's colours as a
+    /// target of the model's own type would (`C::from(Rgb888)`, or the dither).
     pub fn paint<W: Paint>(&mut self, work: W) -> W::Output {
-        let dithered = self.model.is_dithered();
-        let b = self.bayer;
-        match &mut self.pixels {
-            Pixels::Rgb888(f) => work.paint(f),
-            Pixels::Rgb565(f) => work.paint(f),
-            Pixels::Gray8(f) => work.paint(f),
-            Pixels::Gray4(f) if dithered => work.paint(&mut f.dithered_with(b)),
-            Pixels::Gray4(f) => work.paint(f),
-            Pixels::Gray2(f) if dithered => work.paint(&mut f.dithered_with(b)),
-            Pixels::Gray2(f) => work.paint(f),
-            Pixels::Binary(f) if dithered => work.paint(&mut f.dithered_with(b)),
-            Pixels::Binary(f) => work.paint(f),
-        }
+        let dither = self.model.is_dithered().then_some(self.bayer);
+        work.paint(&mut View {
+            pixels: &mut self.pixels,
+            dither,
+        })
     }
 
     /// The colours the panel shows, one a pixel, row-major: each pixel's colour as
@@ -153,6 +151,117 @@ impl Panel {
             Pixels::Gray2(f) => plain(f),
             Pixels::Binary(f) => f.pixels().iter().map(|&c| theme.show(c.into())).collect(),
         }
+    }
+}
+
+/// The panel as one `Rgb888` target: each call is passed on to the framebuffer in the
+/// model's colour type, through the ordered dither when `dither` is set (a dithered
+/// model's framebuffer is `Gray4`, `Gray2` or `BinaryColor`).
+struct View<'a> {
+    pixels: &'a mut Pixels,
+    dither: Option<Bayer>,
+}
+
+impl OriginDimensions for View<'_> {
+    fn size(&self) -> Size {
+        match &*self.pixels {
+            Pixels::Rgb888(f) => f.size(),
+            Pixels::Rgb565(f) => f.size(),
+            Pixels::Gray8(f) => f.size(),
+            Pixels::Gray4(f) => f.size(),
+            Pixels::Gray2(f) => f.size(),
+            Pixels::Binary(f) => f.size(),
+        }
+    }
+}
+
+/// One drawing call, made on whichever target the view stands for.
+trait Call {
+    fn on<T>(self, target: &mut T)
+    where
+        T: DrawTarget<Error = Infallible>,
+        T::Color: From<Rgb888>;
+}
+
+impl View<'_> {
+    /// Makes `call` on the framebuffer (or the dither in front of it).
+    fn pass<K: Call>(&mut self, call: K) {
+        match (&mut *self.pixels, self.dither) {
+            (Pixels::Rgb888(f), _) => call.on(f),
+            (Pixels::Rgb565(f), _) => call.on(f),
+            (Pixels::Gray8(f), _) => call.on(f),
+            (Pixels::Gray4(f), Some(b)) => call.on(&mut f.dithered_with(b)),
+            (Pixels::Gray4(f), None) => call.on(f),
+            (Pixels::Gray2(f), Some(b)) => call.on(&mut f.dithered_with(b)),
+            (Pixels::Gray2(f), None) => call.on(f),
+            (Pixels::Binary(f), Some(b)) => call.on(&mut f.dithered_with(b)),
+            (Pixels::Binary(f), None) => call.on(f),
+        }
+    }
+}
+
+/// `draw_iter` of `Rgb888` pixels.
+struct DrawIter<I>(I);
+
+impl<I: IntoIterator<Item = Pixel<Rgb888>>> Call for DrawIter<I> {
+    fn on<T>(self, target: &mut T)
+    where
+        T: DrawTarget<Error = Infallible>,
+        T::Color: From<Rgb888>,
+    {
+        let Ok(()) = target.draw_iter(self.0.into_iter().map(|Pixel(p, c)| Pixel(p, c.into())));
+    }
+}
+
+/// `fill_contiguous` of `Rgb888` colours over an area.
+struct FillContiguous<'r, I>(&'r Rectangle, I);
+
+impl<I: IntoIterator<Item = Rgb888>> Call for FillContiguous<'_, I> {
+    fn on<T>(self, target: &mut T)
+    where
+        T: DrawTarget<Error = Infallible>,
+        T::Color: From<Rgb888>,
+    {
+        let Ok(()) = target.fill_contiguous(self.0, self.1.into_iter().map(Into::into));
+    }
+}
+
+/// `fill_solid` of one `Rgb888` colour over an area.
+struct FillSolid<'r>(&'r Rectangle, Rgb888);
+
+impl Call for FillSolid<'_> {
+    fn on<T>(self, target: &mut T)
+    where
+        T: DrawTarget<Error = Infallible>,
+        T::Color: From<Rgb888>,
+    {
+        let Ok(()) = target.fill_solid(self.0, self.1.into());
+    }
+}
+
+impl DrawTarget for View<'_> {
+    type Color = Rgb888;
+    type Error = Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Pixel<Rgb888>>,
+    {
+        self.pass(DrawIter(pixels));
+        Ok(())
+    }
+
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Rgb888>,
+    {
+        self.pass(FillContiguous(area, colors));
+        Ok(())
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: Rgb888) -> Result<(), Infallible> {
+        self.pass(FillSolid(area, color));
+        Ok(())
     }
 }
 
@@ -186,27 +295,55 @@ mod tests {
             .collect()
     }
 
-    /// `frame` drawn on a simulator display of colour `C`, shown in the window.
-    fn simulated<C, const N: usize, const L: usize, const P: usize, const D: usize>(
+    /// The traced colours of `frame`, drawn by the kernel on a simulator display.
+    fn traced<const N: usize, const L: usize, const P: usize, const D: usize>(
         frame: Frame<'_, N, L, P, D>,
+    ) -> Vec<Rgb888> {
+        let mut display = SimulatorDisplay::<Rgb888>::new(frame.camera.size());
+        frame.paint(&mut display);
+        window(&display, &OutputSettingsBuilder::new().scale(1).pixel_spacing(0).build())
+    }
+
+    /// `traced` colours drawn on a simulator display of colour `C`, converted by
+    /// embedded-graphics, shown in the window.
+    fn converted<C>(traced: &[Rgb888], size: Size, settings: &OutputSettings) -> Vec<Rgb888>
+    where
+        C: PixelColor + From<Rgb888> + Into<Rgb888> + From<BinaryColor>,
+    {
+        let mut display = SimulatorDisplay::<C>::new(size);
+        let area = Rectangle::new(Point::zero(), size);
+        let Ok(()) = display.fill_contiguous(&area, traced.iter().map(|&c| C::from(c)));
+        window(&display, settings)
+    }
+
+    /// `traced` colours drawn on a simulator display of colour `C` (through the
+    /// kernel's dither when `dither` is set), shown in the window.
+    fn simulated<C>(
+        traced: &[Rgb888],
+        size: Size,
         dither: Option<Bayer>,
         settings: &OutputSettings,
     ) -> Vec<Rgb888>
     where
         C: DitherColor + From<Rgb888> + Into<Rgb888> + From<BinaryColor>,
     {
-        let mut display = SimulatorDisplay::<C>::new(frame.camera.size());
-        match dither {
-            Some(b) => frame.paint(&mut display.dithered_with(b)),
-            None => frame.paint(&mut display),
-        }
+        let Some(b) = dither else {
+            return converted::<C>(traced, size, settings);
+        };
+        let mut display = SimulatorDisplay::<C>::new(size);
+        let area = Rectangle::new(Point::zero(), size);
+        let Ok(()) = display
+            .dithered_with(b)
+            .fill_contiguous(&area, traced.iter().copied());
         window(&display, settings)
     }
 
-    /// `frame` through `model` as the simulator shows it: the model's colour type, the
-    /// dither in front for a dithered model, the OLED theme for a binary one.
-    fn simulator<const N: usize, const L: usize, const P: usize, const D: usize>(
-        frame: Frame<'_, N, L, P, D>,
+    /// `traced` colours of a frame of `size` on a display of `model` as the simulator
+    /// shows them: the model's colour type, the dither in front for a dithered model,
+    /// the OLED theme for a binary one.
+    fn simulator(
+        traced: &[Rgb888],
+        size: Size,
         model: Model,
         bayer: Bayer,
         theme: BinaryColorTheme,
@@ -223,29 +360,17 @@ mod tests {
             .build();
         let b = model.is_dithered().then_some(bayer);
         match model {
-            Model::Rgb888 => {
-                let mut display = SimulatorDisplay::<Rgb888>::new(frame.camera.size());
-                frame.paint(&mut display);
-                window(&display, &s)
-            }
-            Model::Rgb565 => {
-                let mut display = SimulatorDisplay::<Rgb565>::new(frame.camera.size());
-                frame.paint(&mut display);
-                window(&display, &s)
-            }
-            Model::Gray8 => {
-                let mut display = SimulatorDisplay::<Gray8>::new(frame.camera.size());
-                frame.paint(&mut display);
-                window(&display, &s)
-            }
-            Model::Gray4 | Model::Gray4Dither => simulated::<Gray4, N, L, P, D>(frame, b, &s),
-            Model::Gray2 | Model::Gray2Dither => simulated::<Gray2, N, L, P, D>(frame, b, &s),
-            Model::Binary | Model::BinaryDither => simulated::<BinaryColor, N, L, P, D>(frame, b, &s),
+            Model::Rgb888 => converted::<Rgb888>(traced, size, &s),
+            Model::Rgb565 => converted::<Rgb565>(traced, size, &s),
+            Model::Gray8 => converted::<Gray8>(traced, size, &s),
+            Model::Gray4 | Model::Gray4Dither => simulated::<Gray4>(traced, size, b, &s),
+            Model::Gray2 | Model::Gray2Dither => simulated::<Gray2>(traced, size, b, &s),
+            Model::Binary | Model::BinaryDither => simulated::<BinaryColor>(traced, size, b, &s),
         }
     }
 
-    /// Every model, matrix and theme shows the simulator's pixels of the same frame, on
-    /// a spheres-only scene and on one with lights, a floor and mirrors.
+    /// Every model, matrix and theme shows the simulator's pixels of the same traced
+    /// frame, on a spheres-only scene and on one with lights, a floor and mirrors.
     #[test]
     fn the_panel_shows_what_the_simulator_shows() {
         let lab = standard::load("lab");
@@ -257,6 +382,8 @@ mod tests {
             .with_size(Size::new(40, 40))
             .build()
             .unwrap();
+        let lab_traced = traced(Frame::new(&lab.scene, &lab_camera));
+        let shadows_traced = traced(Frame::new(&shadows.scene, &shadows_camera));
         let themes = [
             (Theme::OledBlue, BinaryColorTheme::OledBlue),
             (Theme::OledWhite, BinaryColorTheme::OledWhite),
@@ -267,13 +394,15 @@ mod tests {
                     let frame = Frame::new(&lab.scene, &lab_camera);
                     let mut panel = Panel::new(model, bayer, lab_camera.size());
                     panel.paint(frame);
-                    let want = simulator(frame, model, bayer, simulator_theme);
+                    let size = lab_camera.size();
+                    let want = simulator(&lab_traced, size, model, bayer, simulator_theme);
                     assert!(panel.shown(theme) == want, "lab {model:?} {bayer:?} {theme:?}");
 
                     let frame = Frame::new(&shadows.scene, &shadows_camera);
                     let mut panel = Panel::new(model, bayer, shadows_camera.size());
                     panel.paint(frame);
-                    let want = simulator(frame, model, bayer, simulator_theme);
+                    let size = shadows_camera.size();
+                    let want = simulator(&shadows_traced, size, model, bayer, simulator_theme);
                     assert!(
                         panel.shown(theme) == want,
                         "shadows {model:?} {bayer:?} {theme:?}"

@@ -170,9 +170,12 @@ impl<'a, const N: usize, C, const L: usize, const P: usize, const D: usize> Rend
     /// monomorphised loop as [`Drawable::draw`], and hands each [`Sample`] (direction,
     /// hit, colour) to `f`.
     ///
-    /// For tests, accuracy measurements and custom sinks.
+    /// For tests, accuracy measurements and custom sinks. `f` is called through a
+    /// `dyn FnMut`, so every caller of a scene type shares one copy of the loop
+    /// rather than building all the methods again for each closure.
     pub fn trace(&self, mut f: impl FnMut(Sample)) {
         let full = Rectangle::new(Point::zero(), self.camera.size());
+        let mut f: &mut dyn FnMut(Sample) = &mut f;
         let mut sink = TraceSink(&mut f);
         let _ = self.render(full, Point::zero(), &mut sink);
     }

@@ -1,17 +1,14 @@
 //! The library's API and behaviour tests, one binary (one link instead of one per
 //! file): the camera, the sphere tests, rendering into every colour format, clipping,
 //! bands, scale, culling, the scene features, and a frame drawn into the desktop
-//! simulator's headless display. The tests against the f64 reference live in the lab.
+//! simulator's headless display. Incremental frames have a binary of their own
+//! (`tests/incremental`); the tests against the f64 reference live in the lab.
 
 #[cfg(feature = "std")] // the standard scenes are scene files
 mod band;
 mod camera;
 mod clip;
 mod common;
-mod framebuffer;
-mod incremental;
-mod incremental_regressions;
-mod incremental_sequences;
 mod intersect;
 mod lit;
 mod render;

@@ -10,7 +10,7 @@ use embedded_raytracer::{
     SphereTest, Sqrt, Stepping, Vec3,
 };
 
-use crate::incremental_sequences::{Check, Drift, Target};
+use crate::sequences::{Check, Drift, Target};
 
 const WHITE: Rgb888 = Rgb888::new(255, 255, 255);
 

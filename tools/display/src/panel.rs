@@ -301,7 +301,10 @@ mod tests {
     ) -> Vec<Rgb888> {
         let mut display = SimulatorDisplay::<Rgb888>::new(frame.camera.size());
         frame.paint(&mut display);
-        window(&display, &OutputSettingsBuilder::new().scale(1).pixel_spacing(0).build())
+        window(
+            &display,
+            &OutputSettingsBuilder::new().scale(1).pixel_spacing(0).build(),
+        )
     }
 
     /// `traced` colours drawn on a simulator display of colour `C`, converted by

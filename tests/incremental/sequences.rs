@@ -585,14 +585,33 @@ pub fn sequence(seed: u64, max: Size, frames: usize) -> Result<(), String> {
 
 /// Runs sequences `seeds`, and fails naming every failing seed (each printed with what
 /// went wrong as it is found).
+///
+/// The sequences are independent: the seeds are cut into one run of consecutive seeds
+/// per core, each on a thread of its own.
 fn sweep(seeds: core::ops::Range<u64>, max: Size, frames: usize) {
-    let mut failed = Vec::new();
-    for seed in seeds.clone() {
-        if let Err(e) = sequence(seed, max, frames) {
-            println!("seed {seed}: {e}\n");
-            failed.push(seed);
-        }
-    }
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()) as u64;
+    let chunk = (seeds.end - seeds.start).div_ceil(threads);
+    let failed: Vec<u64> = std::thread::scope(|scope| {
+        let runs: Vec<_> = (0..threads)
+            .map(|t| {
+                let lo = (seeds.start + t * chunk).min(seeds.end);
+                let hi = (lo + chunk).min(seeds.end);
+                scope.spawn(move || {
+                    let mut failed = Vec::new();
+                    for seed in lo..hi {
+                        if let Err(e) = sequence(seed, max, frames) {
+                            println!("seed {seed}: {e}\n");
+                            failed.push(seed);
+                        }
+                    }
+                    failed
+                })
+            })
+            .collect();
+        runs.into_iter()
+            .flat_map(|run| run.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    });
     assert!(
         failed.is_empty(),
         "{} of {} sequences end with a display that differs from the full render; seeds {failed:?} (replay one with `sequence(seed, {max:?}, {frames})`)",
@@ -610,9 +629,9 @@ fn random_sequences_equal_the_full_render() {
 /// incremental): a rule that fails one sequence in a hundred passes with probability
 /// `0.99^10000 < 10⁻⁴³`. Small images keep sub-pixel spheres, one-row and one-column
 /// images and touching silhouettes frequent; run by `.ci/run` in the test profile the
-/// quick sweep is built in (a few minutes, no second build).
+/// quick sweep is built in (under two minutes on two cores, no second build).
 #[test]
-#[ignore = "slow: a few minutes; run by .ci/run with --ignored"]
+#[ignore = "slow: a minute or two; run by .ci/run with --ignored"]
 fn many_random_sequences_equal_the_full_render() {
     sweep(1_000_000..1_010_000, Size::new(20, 14), 6);
 }

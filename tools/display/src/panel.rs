@@ -226,19 +226,8 @@ impl<I: IntoIterator<Item = Rgb888>> Call for FillContiguous<'_, I> {
     }
 }
 
-/// `fill_solid` of one `Rgb888` colour over an area.
-struct FillSolid<'r>(&'r Rectangle, Rgb888);
-
-impl Call for FillSolid<'_> {
-    fn on<T>(self, target: &mut T)
-    where
-        T: DrawTarget<Error = Infallible>,
-        T::Color: From<Rgb888>,
-    {
-        let Ok(()) = target.fill_solid(self.0, self.1.into());
-    }
-}
-
+// `fill_solid` and `clear` keep their defaults (a repeated colour through
+// `fill_contiguous`), which is what the framebuffer's and the dither's do as well.
 impl DrawTarget for View<'_> {
     type Color = Rgb888;
     type Error = Infallible;
@@ -256,11 +245,6 @@ impl DrawTarget for View<'_> {
         I: IntoIterator<Item = Rgb888>,
     {
         self.pass(FillContiguous(area, colors));
-        Ok(())
-    }
-
-    fn fill_solid(&mut self, area: &Rectangle, color: Rgb888) -> Result<(), Infallible> {
-        self.pass(FillSolid(area, color));
         Ok(())
     }
 }

@@ -104,11 +104,10 @@ fn coincident_spheres_show_the_lower_index() {
             let (doubled, single) = twinned(&f.scene, after);
             for method in methods {
                 for secondary in [SecondaryOrigin::Convex, SecondaryOrigin::TEXTBOOK] {
-                    for (sampling, camera) in &cases {
-                        let (sampling, camera) = (*sampling, camera);
+                    for &(sampling, camera) in &cases {
                         let d = differ(
-                            &pixels(&doubled, camera, method, secondary, sampling),
-                            &pixels(&single, camera, method, secondary, sampling),
+                            &pixels(&doubled, &camera, method, secondary, sampling),
+                            &pixels(&single, &camera, method, secondary, sampling),
                         );
                         println!("{name} after {after} {method:?} {secondary:?} {sampling:?}: {d}");
                         assert_eq!(

@@ -104,7 +104,7 @@ fn a_clipped_buffer_is_embedded_graphics_clipped() {
     use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
     use embedded_raytracer::{Camera, Render, Scene, Sphere, Vec3};
 
-    let scene: Scene<2> = Scene::from_array(
+    let scene: Scene<3> = Scene::from_array(
         [
             Sphere::new(Vec3::ZERO, 1.0, Rgb888::new(200, 40, 40)),
             Sphere::new(Vec3::new(0.8, 0.5, -1.0), 0.7, Rgb888::new(40, 200, 40)),

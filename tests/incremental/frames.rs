@@ -2,7 +2,7 @@
 //! full render, bit for bit — every method, sampling, arithmetic and colour format,
 //! whole, offset and clipped — and they trace and send less than the whole frame.
 
-use embedded_graphics::pixelcolor::{BinaryColor, Gray4, Rgb565, Rgb888};
+use embedded_graphics::pixelcolor::{BinaryColor, Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use embedded_raytracer::{
@@ -178,7 +178,7 @@ fn lab1_sequences_equal_the_full_render_for_every_method() {
             Sampling::Center,
             offset,
             Some(clip),
-            Gray4::new(3),
+            BinaryColor::Off,
             6,
         );
     }

@@ -6,6 +6,12 @@
 //!   clipped; and less traced and sent than the whole frame.
 //! - `sequences`: random sequences, each frame against its full render.
 //! - `regressions`: the minimal sequences that once drifted.
+//!
+//! Each scene type and colour type a test draws with builds the whole kernel once more
+//! (every method and sampling, for each sink), so the tests share a few types: a scene
+//! is declared with the capacity of a type in use (`Scene<3>`, `Scene<3, 2, 1>`) unless
+//! its capacity is what it tests, and the random sequences keep theirs, which their
+//! seeds depend on.
 
 #[path = "../api/common.rs"]
 mod common;

@@ -62,7 +62,7 @@ fn exact(cases: Vec<(String, Vec<(usize, usize)>)>) {
 fn a_silhouette_between_two_rows_is_redrawn_under_grid_and_adaptive() {
     let camera = camera(Vec3::new(0.0, 0.0, 10.0), 0.8, Size::new(16, 16));
     let at =
-        |x: f32| Scene::<1>::from_array([Sphere::new(Vec3::new(x, 0.0, 0.0), 0.2, WHITE)], Rgb888::BLACK);
+        |x: f32| Scene::<3>::from_array([Sphere::new(Vec3::new(x, 0.0, 0.0), 0.2, WHITE)], Rgb888::BLACK);
     let frames = [at(0.264), at(-1.321)];
     exact(
         [
@@ -120,7 +120,7 @@ fn adaptive_small_silhouette_boxes_are_redrawn() {
     let tiny = |x: f32, y: f32| Sphere::new(Vec3::new(x, y, 0.0), 1e-5, WHITE);
     let sampling = Sampling::adaptive(2).unwrap();
 
-    let lab1 = |x, y| Scene::<2>::from_array([big, tiny(x, y)], Rgb888::BLACK);
+    let lab1 = |x, y| Scene::<3>::from_array([big, tiny(x, y)], Rgb888::BLACK);
     let frames = [
         lab1(-0.001_596_899_1, 0.011_775_923),
         lab1(0.013_115_373, -0.000_766_179_7),
@@ -134,7 +134,7 @@ fn adaptive_small_silhouette_boxes_are_redrawn() {
     // The features path (a light, shadows off) always shares samples.
     let shiny = Material::new(0.8, 20.0, 0.0);
     let lit = |x, y| {
-        let mut scene: Scene<2, 1> = Scene::from_array(
+        let mut scene: Scene<3, 2, 1> = Scene::from_array(
             [big.with_material(shiny), tiny(x, y).with_material(shiny)],
             Rgb888::BLACK,
         );
@@ -167,7 +167,7 @@ fn the_lecture_notes_tests_false_shadows_are_redrawn() {
     let red = Rgb888::new(220, 40, 40);
     let lamp = Vec3::new(-9.877_849, 195.518_72, -23.738_338);
     let at = |x: f32, z: f32| {
-        let mut scene: Scene<1, 1, 1> = Scene::from_array(
+        let mut scene: Scene<3, 2, 1> = Scene::from_array(
             [Sphere::new(Vec3::new(x, 194.804_37, z), 0.023_937_557, red)],
             Rgb888::BLACK,
         );
@@ -202,21 +202,21 @@ fn the_lecture_notes_tests_false_shadows_are_redrawn() {
 fn a_refused_frame_after_an_integer_frame_is_reported_as_refused() {
     let camera = camera(Vec3::new(0.0, 0.0, 6.0), 0.8, Size::new(32, 32));
     let red = Rgb888::new(220, 40, 40);
-    let first = Scene::<2>::from_array(
+    let first = Scene::<3>::from_array(
         [
             Sphere::new(Vec3::new(-1.0, 0.0, 0.0), 0.6, red),
             Sphere::new(Vec3::new(1.0, 0.0, 0.0), 0.6, red),
         ],
         Rgb888::BLACK,
     );
-    let refused = Scene::<2>::from_array(
+    let refused = Scene::<3>::from_array(
         [
             Sphere::new(Vec3::new(-1.0, -1.0, 0.0), 0.6, red),
             Sphere::new(Vec3::new(0.0, 0.0, -1e30), 0.6, red),
         ],
         Rgb888::BLACK,
     );
-    let why = Render::<2, Rgb565>::new(&refused, &camera)
+    let why = Render::<3, Rgb565>::new(&refused, &camera)
         .with_method(Method::F32)
         .check()
         .unwrap_err();
@@ -224,7 +224,7 @@ fn a_refused_frame_after_an_integer_frame_is_reported_as_refused() {
     for method in [Method::F32, Method::INTEGER] {
         let mut shown = embedded_raytracer::Incremental::new();
         let mut display = crate::framebuffer::Buffer::new(camera.size(), Rgb565::BLACK);
-        let render = |scene| Render::<2, Rgb565>::new(scene, &camera).with_method(method);
+        let render = |scene| Render::<3, Rgb565>::new(scene, &camera).with_method(method);
         assert!(shown.draw(&render(&first), &mut display).unwrap().full);
         let stats = shown.draw(&render(&refused), &mut display).unwrap();
         assert_eq!(

@@ -3,6 +3,11 @@
 //! bands, scale, culling, the scene features, and a frame drawn into the desktop
 //! simulator's headless display. Incremental frames have a binary of their own
 //! (`tests/incremental`); the tests against the f64 reference live in the lab.
+//!
+//! Each scene type and target type a test draws with builds the whole kernel once more,
+//! so a scene is declared with the capacity of a type already in use (`Scene<1, 1, 1>`,
+//! `Scene<2, 0, 0, 1>`) unless its capacity is what it tests: an empty list draws alike
+//! whatever its capacity.
 
 #[cfg(feature = "std")] // the standard scenes are scene files
 mod band;

@@ -7,7 +7,6 @@
 //! hashes as the host's full render of the last frame.
 
 use std::collections::HashMap;
-use std::convert::Infallible;
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
@@ -16,6 +15,8 @@ use embedded_raytracer::motion::Animation;
 use embedded_raytracer::{CameraParams, Incremental, Method, Render, Scene};
 use embedded_raytracer_lab::hash::PixelHash;
 use embedded_raytracer_lab::scenes;
+
+use crate::common::Panel;
 
 const SIZE: Size = Size::new(240, 240);
 
@@ -80,26 +81,6 @@ fn runs() -> Vec<(String, Run)> {
         .collect()
 }
 
-/// The display: `Rgb565` in row order.
-struct Display(Vec<Rgb565>);
-
-impl OriginDimensions for Display {
-    fn size(&self) -> Size {
-        SIZE
-    }
-}
-
-impl DrawTarget for Display {
-    type Color = Rgb565;
-    type Error = Infallible;
-    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, pixels: I) -> Result<(), Infallible> {
-        for Pixel(p, c) in pixels {
-            self.0[(p.y as u32 * SIZE.width + p.x as u32) as usize] = c;
-        }
-        Ok(())
-    }
-}
-
 /// `Rgb565` widened to `Rgb888` into a `PixelHash`, as the firmware hashes its display.
 fn hash565(colors: impl IntoIterator<Item = Rgb565>) -> u64 {
     let mut h = PixelHash::new(SIZE);
@@ -122,7 +103,7 @@ fn host<const N: usize, const L: usize, const P: usize, const D: usize, const M:
     let params = params.with_size(SIZE);
     let (mut scene, mut at) = (base.clone(), params);
     let mut shown: Incremental<N, L, P, D> = Incremental::new();
-    let mut display = Display(vec![Rgb565::BLACK; (SIZE.width * SIZE.height) as usize]);
+    let mut display = Panel::<Rgb565>::new(SIZE);
     let mut frames = Vec::new();
     for frame in 0..=animation.frames() {
         animation
@@ -135,16 +116,17 @@ fn host<const N: usize, const L: usize, const P: usize, const D: usize, const M:
         frames.push([s.traced, s.sent, s.windows, s.strips].map(u64::from));
     }
     let camera = at.build().unwrap();
-    let mut full = Display(vec![Rgb565::BLACK; (SIZE.width * SIZE.height) as usize]);
+    let mut full = Panel::new(SIZE);
     Render::new(&scene, &camera)
         .with_method(method)
         .draw(&mut full)
         .unwrap();
+    let shown = display.pixels();
     assert!(
-        display.0 == full.0,
+        shown == full.pixels(),
         "the host's incremental display is not the full render"
     );
-    (frames, hash565(display.0))
+    (frames, hash565(shown))
 }
 
 #[test]

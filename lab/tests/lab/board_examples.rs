@@ -43,54 +43,12 @@ mod ssd1306_scenes;
 mod stm32f407;
 // One module per file: `board_scenes` loads this board's scenes (its `lab` scene).
 use crate::board_scenes::stm32f407 as stm32f407_scenes;
+use crate::common::Panel;
 
 /// The ST7789 panels.
 const PANEL: Size = Size::new(240, 240);
 /// The SSD1306.
 const OLED: Size = Size::new(128, 64);
-
-/// A display on the host: what was drawn where, `None` where nothing was.
-struct Panel<C> {
-    size: Size,
-    px: Vec<Option<C>>,
-}
-
-impl<C: PixelColor> Panel<C> {
-    fn new(size: Size) -> Self {
-        Self {
-            size,
-            px: vec![None; (size.width * size.height) as usize],
-        }
-    }
-
-    /// Every pixel, all drawn.
-    fn pixels(self) -> Vec<C> {
-        self.px
-            .into_iter()
-            .map(|p| p.expect("every pixel drawn"))
-            .collect()
-    }
-}
-
-impl<C: PixelColor> OriginDimensions for Panel<C> {
-    fn size(&self) -> Size {
-        self.size
-    }
-}
-
-impl<C: PixelColor> DrawTarget for Panel<C> {
-    type Color = C;
-    type Error = Infallible;
-
-    fn draw_iter<I: IntoIterator<Item = Pixel<C>>>(&mut self, pixels: I) -> Result<(), Infallible> {
-        for Pixel(p, c) in pixels {
-            if self.bounding_box().contains(p) {
-                self.px[(p.y as u32 * self.size.width + p.x as u32) as usize] = Some(c);
-            }
-        }
-        Ok(())
-    }
-}
 
 /// The library's whole render of `scene` seen by `camera` with `method`.
 fn whole<C, const N: usize, const L: usize, const P: usize, const D: usize>(

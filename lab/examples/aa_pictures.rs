@@ -3,7 +3,7 @@
 //! and the edge pixels `Adaptive(4)` traced with the grid.
 //!
 //! ```text
-//! cargo run --release --example aa_pictures [-- --out DIR]   # default: docs/
+//! cargo run --release --features tools --example aa_pictures [-- --out DIR]   # default: docs/
 //! ```
 //!
 //! Writes:

@@ -7,7 +7,7 @@
 //! `Grid(4)`.
 //!
 //! ```text
-//! cargo run --release --example aa_table
+//! cargo run --release --features tools --example aa_table
 //! ```
 //!
 //! Edge pixels are the ones `Adaptive(4)` traced with the grid (`Sample::rays > 1`),

@@ -4,7 +4,7 @@
 //! `lab/tests/lab/lit_stability.rs` assert them).
 //!
 //! ```text
-//! cargo run --release --example accuracy_table
+//! cargo run --release --features tools --example accuracy_table
 //! ```
 //!
 //! The output is deterministic (IEEE arithmetic, no threads, no clock), and `.ci/run`

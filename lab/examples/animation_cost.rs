@@ -2,8 +2,8 @@
 //! same run, and how much more than the changed pixels the rule traces and sends.
 //!
 //! ```text
-//! cargo run --release -p embedded-raytracer-lab --example animation_cost            # prints
-//! cargo run --release -p embedded-raytracer-lab --example animation_cost -- --update
+//! cargo run --release -p embedded-raytracer-lab --features tools --example animation_cost            # prints
+//! cargo run --release -p embedded-raytracer-lab --features tools --example animation_cost -- --update
 //! ```
 //!
 //! `--update` writes the section between `<!-- host:begin -->` and `<!-- host:end -->` of
@@ -331,7 +331,7 @@ fn section(all: &[Measured]) -> Result<String, std::fmt::Error> {
     writeln!(md, "## On the host\n")?;
     writeln!(
         md,
-        "```text\ncargo run --release -p embedded-raytracer-lab --example animation_cost -- --update\n```\n"
+        "```text\ncargo run --release -p embedded-raytracer-lab --features tools --example animation_cost -- --update\n```\n"
     )?;
     writeln!(md, "Measured on {} (shared with other builds: ratios are measured in the same run and only they compare; the ns are this machine's). One whole cycle of each animation at 240×240 onto an in-memory Rgb565 frame buffer: frame 0 drawn whole, then every frame up to the cycle's end (frame 0's moment again). Each frame is drawn incrementally (`Incremental::draw`) and whole (`Render::draw`, the same scene into the same kind of frame buffer), the two interleaved, which goes first alternating; the cycle is repeated {REPS} times and each frame's time is its median; time is {CLOCK}. *Changed* counts the pixels whose full render differs from the previous frame's; over-trace = traced − changed, over-send = sent − changed. After every cycle the incremental frame buffer equals the last frame's full render (the example exits non-zero otherwise). `lab-one` is the Lab #1 scene (`lab`) at 240×240 with only its first sphere (radius 1, at the origin) moving: circling 0.25 around its rest position, one turn in 2 s, 50 frames at 25 a second (defined in the example). *Still* is the last frame drawn again, nothing changed: one scene comparison, nothing sent.\n", machine())?;
 

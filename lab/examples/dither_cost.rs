@@ -3,7 +3,7 @@
 //! `display.dithered()` (Bayer 8×8) and `dithered_with(Bayer::Four)`.
 //!
 //! ```text
-//! cargo run --release --example dither_cost [-- SCENE.toml]
+//! cargo run --release --features tools --example dither_cost [-- SCENE.toml]
 //! ```
 //!
 //! Runs the three variants interleaved, 15 rounds of 200 frames each, and prints each

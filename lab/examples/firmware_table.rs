@@ -3,9 +3,9 @@
 //! on every standard scene at 240×240, the stack of a render, and a frame-rate estimate.
 //!
 //! ```sh
-//! cargo run --example firmware_table -- [QEMU-OUTPUT]   # default: lab/data/qemu_cortex_m4.txt
-//! cargo run --example firmware_table -- lab/data/qemu_cortex_m0.txt --estimate "an RP2040" 133
-//! cargo run --example firmware_table -- QEMU-OUTPUT --cycles lab/data/cycles_cortex_m4.txt
+//! cargo run --features tools --example firmware_table -- [QEMU-OUTPUT]   # default: lab/data/qemu_cortex_m4.txt
+//! cargo run --features tools --example firmware_table -- lab/data/qemu_cortex_m0.txt --estimate "an RP2040" 133
+//! cargo run --features tools --example firmware_table -- QEMU-OUTPUT --cycles lab/data/cycles_cortex_m4.txt
 //! ```
 //!
 //! Without `--estimate CHIP MHZ` the estimate is the STM32F405/407's at 168 MHz.

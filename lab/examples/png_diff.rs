@@ -1,7 +1,7 @@
 //! Compares two PNGs pixel by pixel (8-bit RGB), for the CI screenshot check.
 //!
 //! ```text
-//! cargo run --example png_diff -- expected.png actual.png
+//! cargo run --features tools --example png_diff -- expected.png actual.png
 //! ```
 //!
 //! Exit 0 when the sizes match and every pixel is identical; otherwise prints the size

@@ -1,8 +1,8 @@
 //! The chart of speed against accuracy: every method on every standard scene.
 //!
 //! ```text
-//! cargo run --release --example speed_vs_accuracy            # writes docs/speed_vs_accuracy.{csv,png,md}
-//! cargo run --release --example speed_vs_accuracy -- --quick --out target/chart   # CI: 1 run each
+//! cargo run --release --features tools --example speed_vs_accuracy            # writes docs/speed_vs_accuracy.{csv,png,md}
+//! cargo run --release --features tools --example speed_vs_accuracy -- --quick --out target/chart   # CI: 1 run each
 //! ```
 //!
 //! For each scene and method: the time per pixel (median of several renders in this

@@ -52,9 +52,9 @@ pub fn write_outputs(
     sampled: &[SamplingPoint],
 ) -> Result<(), Box<dyn std::error::Error>> {
     let command = if args.quick {
-        "cargo run --release --example speed_vs_accuracy -- --quick"
+        "cargo run --release --features tools --example speed_vs_accuracy -- --quick"
     } else {
-        "cargo run --release --example speed_vs_accuracy"
+        "cargo run --release --features tools --example speed_vs_accuracy"
     };
     // CSV.
     let mut csv = String::from("scene,method,culling,ns_per_pixel,speedup_vs_baseline,coverage_errors,coverage_error_fraction,max_shade_error,pareto_coverage,pareto_shade\n");

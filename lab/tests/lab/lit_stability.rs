@@ -6,7 +6,7 @@
 //! acne and light leaks (`sweeps::LitErrors`). Each sweep is the code
 //! `lab/examples/accuracy_table.rs` prints into the README; the figures in the comments
 //! were measured with `cargo test --release --test lit_stability -- --ignored
-//! --nocapture` and `cargo run --release --example accuracy_table`.
+//! --nocapture` and `cargo run --release --features tools --example accuracy_table`.
 //!
 //! The default run uses shrunk images (a few seconds in a debug build); the native
 //! 240×240 sweeps are `#[ignore]`d and run by `.ci/run`.

@@ -204,7 +204,7 @@ fn at_max_depth_the_background_stands_in_for_the_reflection() {
 /// `floor` is not truncation; no ray above the horizon hits the floor.
 #[test]
 fn checker_cells_and_horizon() {
-    let mut s: Scene<1, 1, 1> = Scene::new(Rgb888::new(1, 2, 3));
+    let mut s: Scene<0, 1, 1> = Scene::new(Rgb888::new(1, 2, 3));
     let (even, odd) = (Rgb888::new(200, 200, 200), Rgb888::new(100, 0, 0));
     s.push_plane(
         Plane::new(Vec3::new(0.0, -1.0, 0.0), Vec3::new(0.0, 1.0, 0.0), even).with_checker(odd, 1.0),
@@ -219,7 +219,7 @@ fn checker_cells_and_horizon() {
         Size::new(40, 40),
     )
     .unwrap();
-    Render::<1, Rgb888, 1, 1>::new(&s, &camera).trace(|p| {
+    Render::<0, Rgb888, 1, 1>::new(&s, &camera).trace(|p| {
         let hit = p.hit.expect("looking down: every ray hits the floor");
         assert_eq!(hit.index, 0);
         // Where the ray meets y = −1, and the expected cell; Lab #1 facing the eye
@@ -245,7 +245,7 @@ fn checker_cells_and_horizon() {
         Size::new(20, 20),
     )
     .unwrap();
-    Render::<1, Rgb888, 1, 1>::new(&s, &level).trace(|p| {
+    Render::<0, Rgb888, 1, 1>::new(&s, &level).trace(|p| {
         assert_eq!(p.hit.is_some(), p.pixel.y >= 10, "pixel {:?}", p.pixel);
     });
 }
@@ -497,7 +497,7 @@ fn culling_changes_no_pixel_on_random_lit_scenes() {
 fn a_checker_finer_than_f32_resolves_draws_the_planes_colour() {
     let (even, odd) = (Rgb888::new(220, 220, 220), Rgb888::new(40, 40, 40));
     let floor = |checker: Option<Rgb888>, color: Rgb888| {
-        let mut s: Scene<1, 1, 1, 0> = Scene::new(Rgb888::new(20, 30, 60));
+        let mut s: Scene<0, 1, 1, 0> = Scene::new(Rgb888::new(20, 30, 60));
         s.push_light(Light::directional(Vec3::new(-1.0, -2.0, -1.0), 0.8))
             .unwrap();
         let plane = Plane::new(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), color);
@@ -517,9 +517,9 @@ fn a_checker_finer_than_f32_resolves_draws_the_planes_colour() {
         Size::new(48, 48),
     )
     .unwrap();
-    let trace = |s: &Scene<1, 1, 1, 0>| {
+    let trace = |s: &Scene<0, 1, 1, 0>| {
         let mut out = Vec::new();
-        Render::<1, Rgb888, 1, 1, 0>::new(s, &camera).trace(|x| out.push(x));
+        Render::<0, Rgb888, 1, 1, 0>::new(s, &camera).trace(|x| out.push(x));
         out
     };
     let (shown, plain) = (trace(&floor(Some(odd), even)), trace(&floor(None, even)));

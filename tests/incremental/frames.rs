@@ -1,6 +1,7 @@
 //! Incremental frames: after any sequence of them the display equals the last frame's
-//! full render, bit for bit — every method, sampling, arithmetic and colour format,
-//! whole, offset and clipped — and they trace and send less than the whole frame.
+//! full render, bit for bit — every method, sampling and arithmetic, in 16-bit, 24-bit
+//! and 1-bit colour, whole, offset and clipped — and they trace and send less than the
+//! whole frame.
 
 use embedded_graphics::pixelcolor::{BinaryColor, Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
@@ -178,7 +179,7 @@ fn lab1_sequences_equal_the_full_render_for_every_method() {
             Sampling::Center,
             offset,
             Some(clip),
-            BinaryColor::Off,
+            BinaryColor::On,
             6,
         );
     }

@@ -2,8 +2,8 @@
 //! after any sequence of frames the display holds the last frame's full render, bit for
 //! bit.
 //!
-//! - `frames`: every method, sampling, arithmetic and colour format, whole, offset and
-//!   clipped; and less traced and sent than the whole frame.
+//! - `frames`: every method, sampling and arithmetic, in 16-, 24- and 1-bit colour, whole,
+//!   offset and clipped; and less traced and sent than the whole frame.
 //! - `sequences`: random sequences, each frame against its full render.
 //! - `regressions`: the minimal sequences that once drifted.
 //!

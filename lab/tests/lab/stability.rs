@@ -1,8 +1,8 @@
 //! Stability tests: every method measured against the f64 reference
 //! (`embedded_raytracer_lab::reference`) at the point where it fails. Each sweep is the
 //! same code `lab/examples/accuracy_table.rs` prints into the README; the numbers in the
-//! comments and messages were measured with `cargo run --release --example
-//! accuracy_table` and by these tests.
+//! comments and messages were measured with `cargo run --release --features
+//! tools --example accuracy_table` and by these tests.
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;

@@ -1,10 +1,10 @@
 //! The row tracer's shadow tests: whether a shadow ray ([`ShadowRay`]) is blocked, any
 //! hit, with the row's shadow spans and its last occluder per light.
 //!
-//! A row calls one test through a pointer chosen once per row ([`LitRow::shadow`]): the
-//! plain one ([`LitRow::occluded`]), or in a frame with ties one that sends the lights
-//! needing them to the exact path ([`LitRow::occluded_with_ties`]). A point light's
-//! segment beyond its far limit takes [`LitRow::occluded_far`] instead.
+//! A shadow ray takes [`LitRow::shadowed`]: the plain test ([`LitRow::occluded`]),
+//! inlined into the shading loop, or for a light the frame's ties concern the exact
+//! path, out of line ([`LitRow::occluded_exact`]). A point light's segment beyond its
+//! far limit takes [`LitRow::occluded_far`] instead.
 
 use crate::math::SqrtFn;
 use crate::method::intersect::TestStrategy;
@@ -55,14 +55,30 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
         }
     }
 
+    /// Whether the light's shadow ray is blocked: [`Self::occluded`], or for a light
+    /// whose shadow rays need the frame's ties, [`Self::occluded_exact`].
+    ///
+    /// A branch on a per-frame mask, not a call through a pointer: the plain test is
+    /// inlined into the shading loop, its ray in registers (a frame without ties never
+    /// takes the other branch).
+    #[inline(always)]
+    pub(super) fn shadowed(&mut self, light: usize, ray: ShadowRay, column: Option<u32>) -> bool {
+        if self.f.exact_lights & (1 << light.min(31)) != 0 {
+            self.occluded_exact(light, ray)
+        } else {
+            self.occluded(light, ray, column)
+        }
+    }
+
     /// Whether the light's shadow ray is blocked, any hit.
     ///
     /// For a primary ray's hit on the first plane (`column` is its column), only the
     /// spheres whose shadow span on this row holds the column can block it, then the
-    /// planes; otherwise the light's last occluder first, then every object until one
-    /// blocks. The literal baseline tests every object, as a closest-hit search would.
-    /// Any hit: the order of the tests changes no answer.
-    pub(super) fn occluded(&mut self, light: usize, ray: ShadowRay, column: Option<u32>) -> bool {
+    /// other planes; otherwise the light's last occluder first, then every object until
+    /// one blocks. The literal baseline tests every object, as a closest-hit search
+    /// would. Any hit: the order of the tests changes no answer.
+    #[inline(always)]
+    fn occluded(&mut self, light: usize, ray: ShadowRay, column: Option<u32>) -> bool {
         let f = self.f;
         let n = f.spheres.len();
         let count = n + f.planes.len();
@@ -80,7 +96,10 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
                     return true;
                 }
             }
-            return (n..count).map(ObjectId::new).any(|k| self.blocks(k, ray));
+            // The first plane is the ray's own (convex: never met again) unless the
+            // exit rule tests it.
+            let first = usize::from(!O::TESTS_SELF);
+            return (n + first..count).map(ObjectId::new).any(|k| self.blocks(k, ray));
         }
         let cached = self.occluder.get(light).copied().unwrap_or(LastOccluder::NONE);
         if let Some(c) = cached.get() {
@@ -97,17 +116,6 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
             }
         }
         false
-    }
-
-    /// [`Self::occluded`] in a frame with ties: [`Self::occluded_exact`] for the lights
-    /// that need it.
-    #[inline(never)]
-    pub(super) fn occluded_with_ties(&mut self, light: usize, ray: ShadowRay, column: Option<u32>) -> bool {
-        if self.f.exact_lights & (1 << light.min(31)) != 0 {
-            self.occluded_exact(light, ray)
-        } else {
-            self.occluded(light, ray, column)
-        }
     }
 
     /// [`Self::occluded`] for a point light's segment longer than its far limit
@@ -151,8 +159,10 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
     /// surface, and an object the lamp lies on is decided by the side the segment
     /// reaches the lamp from.
     ///
+    /// Out of line: only a frame with ties takes it.
+    ///
     /// [`Ties`]: crate::trace::lit::ties::Ties
-    #[inline(always)]
+    #[inline(never)]
     fn occluded_exact(&self, light: usize, ray: ShadowRay) -> bool {
         let f = self.f;
         let (Some(on_sphere), Some(on_plane), Some(at)) = (

@@ -17,7 +17,6 @@ use crate::trace::lit::exact::{closest_twins, Objects};
 use crate::trace::lit::exit::{far_root, Exit};
 use crate::trace::lit::frame::LitFrame;
 use crate::trace::lit::object::{LastOccluder, ObjectId};
-use crate::trace::lit::shadow::ShadowRay;
 use crate::trace::scanline::RowTracer;
 
 /// One row of the scene-features path: the planes' spans, the shadow spans and, per
@@ -41,17 +40,8 @@ pub(super) struct LitRow<
     spans: [(u32, u32); P],
     /// Per light: the object that last blocked its shadow ray on this row.
     pub(super) occluder: [LastOccluder; L],
-    /// The shadow test: [`Self::occluded`], or in a frame with ties
-    /// [`Self::occluded_with_ties`] — chosen per row, called through a pointer, so a
-    /// frame without ties runs the loop it would without them.
-    pub(super) shadow: Shadow<'f, 's, T, Q, O, N, L, P, D>,
     marker: core::marker::PhantomData<(Q, O)>,
 }
-
-/// [`LitRow::shadow`]'s type: light, shadow ray and, for a primary ray's hit, its
-/// column.
-pub(super) type Shadow<'f, 's, T, Q, O, const N: usize, const L: usize, const P: usize, const D: usize> =
-    fn(&mut LitRow<'f, 's, T, Q, O, N, L, P, D>, usize, ShadowRay, Option<u32>) -> bool;
 
 impl<
         'f,
@@ -96,11 +86,6 @@ impl<
             f,
             spans,
             occluder: [LastOccluder::NONE; L],
-            shadow: if f.exact_lights != 0 {
-                Self::occluded_with_ties
-            } else {
-                Self::occluded
-            },
             marker: core::marker::PhantomData,
         }
     }

@@ -126,7 +126,7 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
                 let blocked = if dist > far {
                     self.occluded_far(index, ray)
                 } else {
-                    (self.shadow)(self, index, ray, column)
+                    self.shadowed(index, ray, column)
                 };
                 if blocked {
                     continue;
@@ -218,7 +218,7 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
                 let blocked = if dist > far {
                     self.occluded_far(index, ray)
                 } else {
-                    (self.shadow)(self, index, ray, column)
+                    self.shadowed(index, ray, column)
                 };
                 // Which lights reach the surface: a shadow boundary is an edge.
                 id.mix(2 * index as u32 + 1 + u32::from(blocked));

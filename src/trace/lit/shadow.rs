@@ -12,7 +12,7 @@
 
 use core::cell::Cell;
 
-use crate::camera::span::{Margin, Silhouette};
+use crate::camera::span::Silhouette;
 use crate::camera::Camera;
 use crate::math::vec3::Vec3;
 use crate::method::intersect::{Scale, SphereGeom};
@@ -56,7 +56,8 @@ impl<const N: usize> ShadowRow<N> {
 }
 
 /// Where on the image the shadow that sphere `g` casts on `floor` under `light` can be
-/// seen: the silhouette of a ball that contains the shadow.
+/// seen: the pixels whose ray meets the floor inside a disc that holds the shadow
+/// (and, for a directional light, inside the shadow's own cylinder).
 ///
 /// A primary ray that hits the floor outside it cannot be in that sphere's shadow;
 /// `Silhouette::ALL` (no culling) where the shadow is not bounded.
@@ -77,11 +78,13 @@ impl<const N: usize> ShadowRow<N> {
 ///   bounds its radius. Products, not differences, and no point computed from the
 ///   light's position: nothing cancels for a light however far.
 ///
-/// The ball is enlarged by `2⁻⁸` of the lengths involved (far beyond the `f32`
-/// rounding of the hit point and of the shadow test, ≈ 2⁻²² of them), and the
-/// silhouette by the quadratic tests' margin and the stepping's error bound, as a
-/// sphere's is: culling changes no pixel (`tests/api/lit.rs` compares with the unculled
-/// loop).
+/// The disc (and the cylinder) is enlarged by `2⁻⁸` of the lengths involved (far
+/// beyond the `f32` rounding of the hit point and of the shadow test, ≈ 2⁻²² of
+/// them), and its image by the stepping's error bound ([`Silhouette::on_plane`]): the
+/// disc on the plane, not a ball around it, so a low sun's long ellipse is not culled
+/// as the circle around its long axis. Culling changes no pixel (`tests/api/lit.rs`
+/// compares with the unculled loop); the incremental frames ask the same image
+/// ([`shadow_regions`]).
 pub(super) fn shadow_silhouette(
     light: &FrameLight,
     g: &SphereGeom,
@@ -90,12 +93,22 @@ pub(super) fn shadow_silhouette(
     step_err: f32,
 ) -> Silhouette {
     match shadow_disc(light, g, floor) {
-        Some(ShadowDisc { centre, radius, .. }) => {
-            let centre = Vec3::new(centre[0] as f32, centre[1] as f32, centre[2] as f32);
-            Silhouette::new(centre, radius as f32, camera, Margin::Quadratic, step_err)
-        }
+        Some(disc) => disc_silhouette(&disc, camera, step_err),
         None => Silhouette::ALL,
     }
+}
+
+/// The pixels whose ray meets the plane inside `disc` (and for a directional light,
+/// inside its cylinder): [`Silhouette::on_plane`].
+fn disc_silhouette(disc: &ShadowDisc, camera: &Camera, step_err: f32) -> Silhouette {
+    Silhouette::on_plane(
+        disc.centre,
+        disc.normal,
+        disc.radius,
+        disc.cylinder.map(|c| (c.axis, c.radius)),
+        camera,
+        step_err,
+    )
 }
 
 /// A disc of a plane that holds a sphere's shadow ([`shadow_disc`]), in `f64`.
@@ -196,10 +209,10 @@ fn shadow_disc(light: &FrameLight, g: &SphereGeom, floor: &FramePlane) -> Option
 /// Where on the image the shadow that `sphere` casts on the scene's first plane under
 /// each of its lights can be seen, one silhouette per usable light, passed to `f`.
 ///
-/// Each is the image of the disc of the plane that holds the shadow ([`shadow_disc`],
-/// the disc the features frame culls its shadow rays with, inside the ball around it
-/// that [`shadow_silhouette`] images), in the frame's units (`scale`). Nothing for a
-/// scene without a plane.
+/// Each is the image of the disc of the plane that holds the shadow ([`shadow_disc`]),
+/// the same image the features frame culls its shadow rays with
+/// ([`shadow_silhouette`]), in the frame's units (`scale`). Nothing for a scene without
+/// a plane.
 pub(crate) fn shadow_regions<const N: usize, const L: usize, const P: usize, const D: usize>(
     scene: &Scene<N, L, P, D>,
     sphere: &Sphere,
@@ -216,14 +229,7 @@ pub(crate) fn shadow_regions<const N: usize, const L: usize, const P: usize, con
     for l in scene.lights() {
         if let Some(light) = FrameLight::new(l, eye, scale) {
             f(match shadow_disc(&light, &geom, &floor) {
-                Some(disc) => Silhouette::on_plane(
-                    disc.centre,
-                    disc.normal,
-                    disc.radius,
-                    disc.cylinder.map(|c| (c.axis, c.radius)),
-                    camera,
-                    step_err,
-                ),
+                Some(disc) => disc_silhouette(&disc, camera, step_err),
                 None => Silhouette::ALL,
             });
         }

@@ -46,6 +46,14 @@ pub(crate) trait RowTracer<'s, T: TestStrategy, Sh: Shader> {
         i: u32,
         d: Vec3,
     ) -> (Option<(usize, f32)>, Rgb888);
+    /// [`Self::pixel`]'s colour alone: what a row's colour runs draw
+    /// ([`PixelRow::color_runs`], the path of a `DrawTarget`).
+    ///
+    /// A tracer may give this path a copy of its shading inlined into the row loop.
+    #[inline(always)]
+    fn color(&mut self, sphere_hit: Option<(usize, f32, &'s FrameSphere<T, Sh>)>, i: u32, d: Vec3) -> Rgb888 {
+        self.pixel(sphere_hit, i, d).1
+    }
     /// As [`Self::pixel`]'s colour, with the ray's identity for adaptive sampling
     /// (`sampling/`).
     ///
@@ -333,7 +341,7 @@ impl<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T,
         row.i += 1;
         let d = row.stepper.next_direction();
         let best = row.closest(i, d);
-        Some(row.tracer.pixel(best, i, d).1)
+        Some(row.tracer.color(best, i, d))
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {

@@ -170,7 +170,7 @@ pub(super) enum FrameLight {
 ///
 /// A segment longer than `2¹⁰·|P|` (`P` the lamp, eye-relative) starts at a surface
 /// point `o` more than `2¹⁰ − 1` times farther from the eye than the lamp. Its tests
-/// then run on the same open segment from the lamp's end (`LitRow::occluded_far`):
+/// then run on the same open segment from the lamp's end (`LitRow::occluded_exact`):
 /// a sphere from `P` toward `o`, where `C − o` would be rounded to `u·|o|` and can
 /// lose every sphere near the lamp; a plane by the signs of its equation at the two
 /// ends ([`FramePlane::separates`]), where the intersection parameter and the length

@@ -2,9 +2,9 @@
 //! hit, with the row's shadow spans and its last occluder per light.
 //!
 //! A shadow ray takes [`LitRow::shadowed`]: the plain test ([`LitRow::occluded`]),
-//! inlined into the shading loop, or for a light the frame's ties concern the exact
-//! path, out of line ([`LitRow::occluded_exact`]). A point light's segment beyond its
-//! far limit takes [`LitRow::occluded_far`] instead.
+//! inlined into the shading loop, or out of line the exact path
+//! ([`LitRow::occluded_exact`]) for a light the frame's ties concern and for a point
+//! light's segment beyond its far limit (tested from the lamp's end).
 
 use crate::math::SqrtFn;
 use crate::method::intersect::TestStrategy;
@@ -56,17 +56,28 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
     }
 
     /// Whether the light's shadow ray is blocked: [`Self::occluded`], or for a light
-    /// whose shadow rays need the frame's ties, [`Self::occluded_exact`].
+    /// whose shadow rays need the frame's ties or a segment beyond the far limit
+    /// (`far`), [`Self::occluded_exact`].
     ///
     /// A branch on a per-frame mask, not a call through a pointer: the plain test is
     /// inlined into the shading loop, its ray in registers (a frame without ties never
     /// takes the other branch).
+    ///
+    /// The ray comes as a function that builds it, called in each branch: the exact
+    /// path takes it in memory, and built once before the branch its stores would be
+    /// paid by every shadow ray.
     #[inline(always)]
-    pub(super) fn shadowed(&mut self, light: usize, ray: ShadowRay, column: Option<u32>) -> bool {
-        if self.f.exact_lights & (1 << light.min(31)) != 0 {
-            self.occluded_exact(light, ray)
+    pub(super) fn shadowed(
+        &mut self,
+        light: usize,
+        ray: impl Fn() -> ShadowRay,
+        far: bool,
+        column: Option<u32>,
+    ) -> bool {
+        if far || self.f.exact_lights & (1 << light.min(31)) != 0 {
+            self.occluded_exact(light, ray(), far)
         } else {
-            self.occluded(light, ray, column)
+            self.occluded(light, ray(), column)
         }
     }
 
@@ -118,16 +129,24 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
         false
     }
 
-    /// [`Self::occluded`] for a point light's segment longer than its far limit
-    /// ([`FAR_FACTOR`]): every object tested from the lamp's end, ties decided exactly.
+    /// [`Self::occluded`] for a light whose shadow rays need the frame's ties
+    /// ([`Ties`]) — its lamp lies on some object, or the frame has coincident objects —
+    /// and for a point light's segment longer than its far limit ([`FAR_FACTOR`],
+    /// `far`), which is tested from the lamp's end.
     ///
-    /// Out of line and cold: no standard scene has such a segment, and the row's own
-    /// tests keep their code and bits.
+    /// Every object is tested (no shadow span, no cached occluder): an object with a
+    /// lower-numbered twin is left out, the twin of the surface the ray leaves is that
+    /// surface, and an object the lamp lies on is decided by the side the segment
+    /// reaches the lamp from.
     ///
+    /// Out of line, one call site: only a frame with ties or a segment beyond the far
+    /// limit (no standard scene has one) takes it, and the plain test keeps its ray in
+    /// registers.
+    ///
+    /// [`Ties`]: crate::trace::lit::ties::Ties
     /// [`FAR_FACTOR`]: crate::trace::lit::consts::FAR_FACTOR
-    #[cold]
     #[inline(never)]
-    pub(super) fn occluded_far(&self, light: usize, ray: ShadowRay) -> bool {
+    fn occluded_exact(&self, light: usize, ray: ShadowRay, far: bool) -> bool {
         let f = self.f;
         let (Some(on_sphere), Some(on_plane), Some(at)) = (
             f.ties.on_sphere.get(light),
@@ -137,43 +156,11 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
             return false;
         };
         let objects = Objects {
-            far: Some(at),
+            far: far.then_some(at),
             ..self.objects()
         };
         occluded_exact::<T, Q>(
             &objects,
-            Lamp {
-                on_sphere,
-                on_plane,
-                at,
-            },
-            ray,
-        )
-    }
-
-    /// [`Self::occluded`] for a light whose shadow rays need the frame's ties
-    /// ([`Ties`]): its lamp lies on some object, or the frame has coincident objects.
-    ///
-    /// Every object is tested (no shadow span, no cached occluder): an object with a
-    /// lower-numbered twin is left out, the twin of the surface the ray leaves is that
-    /// surface, and an object the lamp lies on is decided by the side the segment
-    /// reaches the lamp from.
-    ///
-    /// Out of line: only a frame with ties takes it.
-    ///
-    /// [`Ties`]: crate::trace::lit::ties::Ties
-    #[inline(never)]
-    fn occluded_exact(&self, light: usize, ray: ShadowRay) -> bool {
-        let f = self.f;
-        let (Some(on_sphere), Some(on_plane), Some(at)) = (
-            f.ties.on_sphere.get(light),
-            f.ties.on_plane.get(light),
-            f.lights.get(light).map(FrameLight::at),
-        ) else {
-            return false;
-        };
-        occluded_exact::<T, Q>(
-            &self.objects(),
             Lamp {
                 on_sphere,
                 on_plane,

@@ -191,6 +191,17 @@ impl<
     }
 
     #[inline(always)]
+    fn color(
+        &mut self,
+        sphere_hit: Option<(usize, f32, &'s FrameSphere<T, LitSphere>)>,
+        i: u32,
+        d: Vec3,
+    ) -> Rgb888 {
+        let best = self.primary::<true>(sphere_hit, i, d);
+        self.shade(best, d, i)
+    }
+
+    #[inline(always)]
     fn identified(
         &mut self,
         sphere_hit: Option<(usize, f32, &'s FrameSphere<T, LitSphere>)>,

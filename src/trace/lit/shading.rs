@@ -115,7 +115,7 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
             if f.shadows {
                 let o = O::start(p, l, f.eps);
                 let dist = if O::TESTS_SELF { dist - f.eps } else { dist };
-                let ray = ShadowRay {
+                let ray = || ShadowRay {
                     o,
                     l,
                     dist,
@@ -123,11 +123,7 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
                     inside: s.inside,
                 };
                 // Beyond the far limit the segment is tested from the lamp's end.
-                let blocked = if dist > far {
-                    self.occluded_far(index, ray)
-                } else {
-                    self.shadowed(index, ray, column)
-                };
+                let blocked = self.shadowed(index, ray, dist > far, column);
                 if blocked {
                     continue;
                 }
@@ -207,7 +203,7 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
             if f.shadows {
                 let o = O::start(p, l, f.eps);
                 let dist = if O::TESTS_SELF { dist - f.eps } else { dist };
-                let ray = ShadowRay {
+                let ray = || ShadowRay {
                     o,
                     l,
                     dist,
@@ -215,11 +211,7 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
                     inside: s.inside,
                 };
                 // Beyond the far limit the segment is tested from the lamp's end.
-                let blocked = if dist > far {
-                    self.occluded_far(index, ray)
-                } else {
-                    self.shadowed(index, ray, column)
-                };
+                let blocked = self.shadowed(index, ray, dist > far, column);
                 // Which lights reach the surface: a shadow boundary is an edge.
                 id.mix(2 * index as u32 + 1 + u32::from(blocked));
                 if blocked {

@@ -37,7 +37,8 @@
 //! `table` formats a file of such lines (default `lab/data/cycles_cortex_m4.txt`) as
 //! the README's Markdown: cycles per pixel beside instructions per pixel, the default
 //! method's breakdown on `lab`, and the default's cycles on the scenes with lights, a
-//! floor and mirrors with the frame rates they imply beside an ST7789 at 42 MHz; with `--qemu`, the trace's instruction counts
+//! floor and mirrors with the frame rates they imply beside an ST7789 at 42 MHz, and
+//! the first frame of `bounce` in milliseconds at 168 MHz; with `--qemu`, the trace's instruction counts
 //! are compared with the SysTick-measured ones of that `qemu_cortex_m4` output (which
 //! must come from the same kernel).
 //!
@@ -429,6 +430,22 @@ fn table(args: &[String]) -> Result<(), ModelError> {
                 100.0 * f.get(Kind::LoadStore.key()) / f.get("cycles"),
             );
         }
+    }
+    // The first frame of `bounce`, drawn whole: what every frame costs once the camera
+    // or the light moves.
+    if let Some(b) = find("bounce", &default) {
+        println!(
+            "The default on the first frame of `bounce` (drawn whole, as every frame is when the camera or a light \
+             moves): **{:.2} M estimated cycles, {:.1} ms at 168 MHz** ({:.1} cycles per pixel for {:.1} \
+             instructions), {:.1} frames/s; with the ST7789 at 42 MHz {:.1} frames/s blocking, {:.1} overlapped.",
+            b.get("cycles") / 1e6,
+            1e3 * b.get("cycles") / F_CLK_HZ,
+            b.per_pixel("cycles"),
+            b.per_pixel("instr"),
+            F_CLK_HZ / b.get("cycles"),
+            F_CLK_HZ / (b.get("cycles") + wire),
+            F_CLK_HZ / b.get("cycles").max(wire),
+        );
     }
     if let Some(qemu_path) = option(args, "--qemu") {
         let qemu =

@@ -4,16 +4,17 @@
 //! `cycle_model` (which reads QEMU's execution log) counts exactly the render call.
 //!
 //! ```sh
-//! bash .ci/cycles --quick    # the default method on lab, shadows and mirrors (and the sink alone)
-//! bash .ci/cycles --update   # every method on every Lab #1 scene, the default on shadows and mirrors
+//! bash .ci/cycles --quick    # the default method on lab, shadows, mirrors and bounce (and the sink alone)
+//! bash .ci/cycles --update   # every method on every Lab #1 scene, the default on the others
 //! ```
 //!
 //! Which renders: the default method on `lab`; with the word `features` on QEMU's
 //! semihosting command line (`-semihosting-config
 //! enable=on,target=native,arg=qemu_cycles,arg=features`) instead the default method on
-//! each scene with lights, a floor and mirrors (`shadows`, `mirrors`); with the word
-//! `all`, every method in `Method::ALL` on every Lab #1 scene and the default on the
-//! scenes with features. Chosen at run time, so that every selection traces the same
+//! each scene with lights, a floor and mirrors (`shadows`, `mirrors`) and on the first
+//! frame of `bounce` (the scene at rest, drawn whole: what every frame of a moving
+//! camera costs); with the word `all`, every method in `Method::ALL` on every Lab #1
+//! scene and the default on the scenes with features. Chosen at run time, so that every selection traces the same
 //! ELF: the same code, the same estimates. First, the sink alone (the `sink_only` of
 //! `qemu_cortex_m4`); last (not with `features`), the default method on lab traced into
 //! a band buffer ([`Render::draw_band`], `Rgb888`, [`BAND_ROWS`](fw::BAND_ROWS) rows at
@@ -30,6 +31,8 @@
 //!
 //! The hashes must equal `qemu_cortex_m4`'s (`.ci/cycles` checks them against
 //! `lab/data/qemu_cortex_m4.txt`): the estimated cycles belong to the same pixels.
+//! `qemu_cortex_m4` does not draw `bounce`: its hash is checked against the host's
+//! render instead (`cargo test -p embedded-raytracer-lab --test lab cycle_estimates`).
 //! No SysTick interrupt runs, so no exception lands inside a region.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
@@ -67,7 +70,8 @@ mod fw {
     enum Selection {
         /// No word: the default method on lab, then into bands.
         Quick,
-        /// `features`: the default method on each scene with lights, a floor and mirrors.
+        /// `features`: the default method on each scene with lights, a floor and mirrors,
+        /// and on the first frame of `bounce`.
         Features,
         /// `all`: every method on every Lab #1 scene, the default on each scene with
         /// features, then the default on lab into bands.
@@ -310,6 +314,9 @@ mod fw {
         if selection != Selection::Quick {
             let mut renders = DefaultRenders { failed: false };
             scenes::for_each_feature(&mut renders);
+            // The first frame of the bouncing ball (the scene at rest, drawn whole):
+            // what an orbiting camera pays every frame.
+            scenes::EachScene::scene(&mut renders, "bounce", &scenes::BOUNCE, scenes::BOUNCE_CAMERA);
             ok &= !renders.failed;
         }
         if selection != Selection::Features {

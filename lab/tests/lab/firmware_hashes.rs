@@ -332,3 +332,37 @@ fn output_parser_rejects_a_damaged_line() {
     assert_eq!((parsed.clock_hz, parsed.instructions_per_tick()), (None, 1));
     assert_eq!(parsed.counters, Some((2_000_000, 2_000_010, 2_000_010)));
 }
+
+/// The cycle model's estimate of `bounce`'s first frame (`lab/firmware/examples/qemu_cycles.rs`)
+/// drew the host's pixels: `qemu_cortex_m4` does not draw that scene, so its hash is
+/// checked here, against the render at 240×240 with the default method.
+///
+/// Reads the committed `lab/data/cycles_cortex_m4.txt`, or the estimates
+/// `CYCLE_ESTIMATES` names (`.ci/cycles` points it at the run it just made).
+#[test]
+fn cycle_estimates_of_bounce_draw_the_hosts_pixels() {
+    let path = std::env::var("CYCLE_ESTIMATES").unwrap_or_else(|_| "data/cycles_cortex_m4.txt".to_string());
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    // estimate bounce METHOD hash 0x… pixels N …
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("estimate bounce "))
+        .unwrap_or_else(|| panic!("{path}: no estimate of bounce"));
+    let words: Vec<&str> = line.split_whitespace().collect();
+    let field = |key: &str| {
+        let at = words.iter().position(|w| *w == key);
+        at.and_then(|i| words.get(i + 1))
+            .copied()
+            .unwrap_or_else(|| panic!("{path}: no {key} in {line}"))
+    };
+    let hash = u64::from_str_radix(field("hash").trim_start_matches("0x"), 16).unwrap();
+    let pixels: u64 = field("pixels").parse().unwrap();
+    let (_, label, host_hash, host_pixels) = host_render(
+        "bounce",
+        &scenes::BOUNCE,
+        scenes::BOUNCE_CAMERA,
+        (Method::TARGET_DEFAULT, "", Options::DEFAULT),
+    );
+    assert_eq!(words.get(2).copied(), Some(label.as_str()), "{path}: {line}");
+    assert_eq!((hash, pixels), (host_hash, host_pixels), "{path}: {line}");
+}

@@ -383,7 +383,7 @@ fn scene_errors() {
 /// pixel on random scenes: spheres above, on, in and under a random floor, point lights
 /// high and low (inside spheres too), directional lights down to grazing, cameras
 /// anywhere, every fourth scene with shadows off (its shadow spans are not built). The
-/// robust test, bit for bit against the literal loop.
+/// robust, algebraic and geometric tests in turn, bit for bit against the literal loop.
 #[test]
 #[cfg(feature = "bench-baselines")]
 fn culling_changes_no_pixel_on_random_lit_scenes() {
@@ -456,9 +456,13 @@ fn culling_changes_no_pixel_on_random_lit_scenes() {
         ) else {
             continue;
         };
+        // The robust test and the two that cancel squares (the largest margin the
+        // shadow regions must cover); the forward-differenced tests anchor at span
+        // starts, so culling moves their bits.
+        let test = [SphereTest::Robust, SphereTest::Algebraic, SphereTest::Geometric][case % 3];
         let method = Method::new(
             embedded_raytracer::Stepping::Direct,
-            SphereTest::Robust,
+            test,
             embedded_raytracer::Sqrt::Exact,
         );
         let render = Render::new(&s, &camera).with_method(method);

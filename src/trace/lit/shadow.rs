@@ -78,13 +78,18 @@ impl<const N: usize> ShadowRow<N> {
 ///   bounds its radius. Products, not differences, and no point computed from the
 ///   light's position: nothing cancels for a light however far.
 ///
-/// The disc (and the cylinder) is enlarged by `2⁻⁸` of the lengths involved (far
-/// beyond the `f32` rounding of the hit point and of the shadow test, ≈ 2⁻²² of
+/// **Margins.** The shadow test may report a ray blocked where it passes up to
+/// `r_eff` from the centre, `r_eff² = r²·(1 + 2⁻¹⁰) + 2⁻¹⁷·|C − o|²` for the tests that
+/// cancel squares (the larger of the two margins of `camera::span`'s tests, so it
+/// holds whichever test the method runs): the disc is that of the sphere of radius
+/// `r_eff`, with `|C − o|` bounded by twice the farthest point of the sphere's own
+/// disc from `C` (checked on the enlarged disc; otherwise no culling). The disc (and
+/// the cylinder) is then enlarged by `2⁻⁸` of the lengths involved (far beyond the
+/// `f32` rounding of the hit point and of the shadow ray's direction, a few `2⁻²⁴` of
 /// them), and its image by the stepping's error bound ([`Silhouette::on_plane`]): the
 /// disc on the plane, not a ball around it, so a low sun's long ellipse is not culled
 /// as the circle around its long axis. Culling changes no pixel (`tests/api/lit.rs`
-/// compares with the unculled loop); the incremental frames ask the same image
-/// ([`shadow_regions`]).
+/// compares with the unculled loop on random lit scenes).
 pub(super) fn shadow_silhouette(
     light: &FrameLight,
     g: &SphereGeom,
@@ -92,10 +97,38 @@ pub(super) fn shadow_silhouette(
     camera: &Camera,
     step_err: f32,
 ) -> Silhouette {
-    match shadow_disc(light, g, floor) {
-        Some(disc) => disc_silhouette(&disc, camera, step_err),
-        None => Silhouette::ALL,
+    let (c, r) = (v64(g.l), libm::sqrt(f64::from(g.r2)));
+    // The farthest a shadow ray's origin in the disc is from the centre.
+    let reach = |d: &ShadowDisc| norm(sub(d.centre, c)) + d.radius;
+    let Some(own) = shadow_disc(light, c, r, floor) else {
+        return Silhouette::ALL;
+    };
+    let far = 2.0 * reach(&own);
+    let r_eff = libm::sqrt(r * r * (1.0 + TWO_M10) + far * far * TWO_M17);
+    match shadow_disc(light, c, r_eff, floor) {
+        Some(disc) if reach(&disc) <= far => disc_silhouette(&disc, camera, step_err),
+        _ => Silhouette::ALL,
     }
+}
+
+/// `2⁻¹⁰` and `2⁻¹⁷`: the shadow test's margin ([`shadow_silhouette`]), as the span
+/// culling's quadratic one.
+const TWO_M10: f64 = 1.0 / 1024.0;
+const TWO_M17: f64 = 1.0 / 131_072.0;
+
+/// A vector in `f64`.
+fn v64(v: Vec3) -> [f64; 3] {
+    [f64::from(v.x), f64::from(v.y), f64::from(v.z)]
+}
+
+/// `a − b`.
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// `|a|`.
+fn norm(a: [f64; 3]) -> f64 {
+    libm::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
 }
 
 /// The pixels whose ray meets the plane inside `disc` (and for a directional light,
@@ -133,26 +166,28 @@ struct ShadowCylinder {
     radius: f64,
 }
 
-/// The disc of `floor` that holds the shadow sphere `g` casts under `light`
-/// ([`shadow_silhouette`]), and for a directional light the cylinder it is the cut of;
-/// `None` where the shadow is not bounded.
+/// The disc of `floor` that holds the shadow the sphere of centre `c` (relative to the
+/// eye) and radius `r` casts under `light` ([`shadow_silhouette`]), and for a
+/// directional light the cylinder it is the cut of; `None` where the shadow is not
+/// bounded.
 ///
-/// The disc's radius `r/|l·n|` is the cylinder's cut's semi-major axis; both radii are
-/// enlarged by the same `2⁻⁸` of the lengths involved.
-fn shadow_disc(light: &FrameLight, g: &SphereGeom, floor: &FramePlane) -> Option<ShadowDisc> {
-    let v64 = |v: Vec3| [f64::from(v.x), f64::from(v.y), f64::from(v.z)];
+/// The cylinder's radius is enlarged by `2⁻⁸` of the lengths involved, and the disc's,
+/// `r/|l·n|` (the cut's semi-major axis), by that slack over `|l·n|`: the disc holds
+/// the enlarged cylinder's cut.
+fn shadow_disc(light: &FrameLight, c: [f64; 3], r: f64, floor: &FramePlane) -> Option<ShadowDisc> {
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let along = |a: [f64; 3], b: [f64; 3], k: f64| [a[0] + b[0] * k, a[1] + b[1] * k, a[2] + b[2] * k];
-    let (c, q, mut n) = (v64(g.l), v64(floor.q), v64(floor.n));
-    let r = libm::sqrt(f64::from(g.r2));
+    let (q, mut n) = (v64(floor.q), v64(floor.n));
     let h_c = dot(along(c, q, -1.0), n);
-    let (centre, radius, axis) = match *light {
+    // `stretch`: how much wider than the sphere's radius the disc must grow when the
+    // radius does (a cylinder's cut is `1/|l·n|` times its radius along the tilt).
+    let (centre, radius, axis, stretch) = match *light {
         FrameLight::Directional { l, .. } => {
             let l = v64(l);
             let ln = dot(l, n);
             let len = libm::sqrt(dot(l, l));
             let unit = [l[0] / len, l[1] / len, l[2] / len];
-            (along(c, l, -h_c / ln), r / ln.abs(), Some(unit))
+            (along(c, l, -h_c / ln), r / ln.abs(), Some(unit), 1.0 / ln.abs())
         }
         FrameLight::Point { p, .. } => {
             let p = v64(p);
@@ -186,12 +221,13 @@ fn shadow_disc(light: &FrameLight, g: &SphereGeom, floor: &FramePlane) -> Option
             let reach = libm::sqrt(tilt * tilt + across * across);
             // C's height on the light's side: the axis meets the plane h_C/cos γ on.
             let h_c = dot(along(c, q, -1.0), n);
-            (along(c, axis, h_c / cos_g), h_p * reach, None)
+            (along(c, axis, h_c / cos_g), h_p * reach, None, 1.0)
         }
     };
     let size = libm::sqrt(dot(centre, centre)) + libm::sqrt(dot(c, c)) + r;
     let slack = (radius + size) * (1.0 / 256.0);
-    let radius = radius + slack;
+    // Under the sun the disc holds the enlarged cylinder's whole cut: `(r + slack)/|l·n|`.
+    let radius = radius + slack * stretch.max(1.0);
     if !(radius.is_finite() && size.is_finite()) {
         return None;
     }
@@ -228,10 +264,12 @@ pub(crate) fn shadow_regions<const N: usize, const L: usize, const P: usize, con
     let geom = SphereGeom::new(sphere.center, sphere.radius, eye, scale);
     for l in scene.lights() {
         if let Some(light) = FrameLight::new(l, eye, scale) {
-            f(match shadow_disc(&light, &geom, &floor) {
-                Some(disc) => disc_silhouette(&disc, camera, step_err),
-                None => Silhouette::ALL,
-            });
+            f(
+                match shadow_disc(&light, v64(geom.l), libm::sqrt(f64::from(geom.r2)), &floor) {
+                    Some(disc) => disc_silhouette(&disc, camera, step_err),
+                    None => Silhouette::ALL,
+                },
+            );
         }
     }
 }

@@ -44,11 +44,11 @@ const ON_SURFACE: f64 = 1.0 / 65_536.0;
 ///   the other as the surface it leaves (the convex exit): no ray sees one twin from
 ///   the other at `t ≈ 0`.
 ///
-/// A frame without either tie draws the pixels it would without this rule: its rows
-/// call the plain shadow test (through the pointer each row picks,
-/// [`LitRow::shadow`]) and its reflected rays test one flag.
+/// A frame without either tie draws the pixels it would without this rule: its shadow
+/// rays take the plain test (a branch on [`Ties::exact_mask`] in
+/// [`LitRow::shadowed`]) and its reflected rays test one flag.
 ///
-/// [`LitRow::shadow`]: crate::trace::lit::row::LitRow::shadow
+/// [`LitRow::shadowed`]: crate::trace::lit::row::LitRow::shadowed
 #[derive(PartialEq)]
 pub(super) struct Ties<const N: usize, const L: usize, const P: usize> {
     /// Per light (the frame's numbering) and sphere: the lamp lies on it.

@@ -83,7 +83,11 @@ impl<const N: usize> ShadowRow<N> {
 /// cancel squares (the larger of the two margins of `camera::span`'s tests, so it
 /// holds whichever test the method runs): the disc is that of the sphere of radius
 /// `r_eff`, with `|C − o|` bounded by twice the farthest point of the sphere's own
-/// disc from `C` (checked on the enlarged disc; otherwise no culling). The disc (and
+/// disc from `C` (checked on the enlarged disc; otherwise no culling). That bound
+/// assumes no origin farther away is in the shadow of a sphere enlarged for its own
+/// distance: the enlarged shadow must grow more slowly than the distance, true unless
+/// the light all but grazes the floor (a sun within about `2⁻⁷` of the plane), where
+/// the random scenes of `tests/api/lit.rs` reach but no proof here does. The disc (and
 /// the cylinder) is then enlarged by `2⁻⁸` of the lengths involved (far beyond the
 /// `f32` rounding of the hit point and of the shadow ray's direction, a few `2⁻²⁴` of
 /// them), and its image by the stepping's error bound ([`Silhouette::on_plane`]): the

@@ -874,11 +874,16 @@ impl Estimate<'_> {
         self.words.get(2).copied().unwrap_or("")
     }
 
+    /// The word after `key` (searched after scene and method), as written.
+    pub fn field(&self, key: &str) -> Option<&str> {
+        let words = self.words.get(3..).unwrap_or_default();
+        let i = words.iter().position(|w| *w == key)?;
+        words.get(i + 1).copied()
+    }
+
     /// The number after `key` (searched after scene and method); NaN if absent.
     pub fn get(&self, key: &str) -> f64 {
-        let words = self.words.get(3..).unwrap_or_default();
-        let i = words.iter().position(|w| *w == key);
-        i.and_then(|i| words.get(i + 1)?.parse().ok()).unwrap_or(f64::NAN)
+        self.field(key).and_then(|w| w.parse().ok()).unwrap_or(f64::NAN)
     }
 
     /// `key` per pixel.

@@ -16,6 +16,7 @@
 //! names — the three scripts point it at the runs they just made, so any difference
 //! between host and firmware fails CI.
 
+use embedded_raytracer_lab::cycle_model;
 use embedded_raytracer_lab::qemu_output;
 use embedded_raytracer_lab::scenes;
 use embedded_raytracer_scenes as standard;
@@ -343,16 +344,15 @@ fn output_parser_rejects_a_damaged_line() {
 fn cycle_estimates_of_bounce_draw_the_hosts_pixels() {
     let path = std::env::var("CYCLE_ESTIMATES").unwrap_or_else(|_| "data/cycles_cortex_m4.txt".to_string());
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    // estimate bounce METHOD hash 0x… pixels N …
-    let line = text
-        .lines()
-        .find(|l| l.starts_with("estimate bounce "))
+    let estimates = cycle_model::estimates(&text);
+    let bounce = estimates
+        .iter()
+        .find(|e| e.scene() == "bounce")
         .unwrap_or_else(|| panic!("{path}: no estimate of bounce"));
-    let words: Vec<&str> = line.split_whitespace().collect();
+    let line = bounce.words.join(" ");
     let field = |key: &str| {
-        let at = words.iter().position(|w| *w == key);
-        at.and_then(|i| words.get(i + 1))
-            .copied()
+        bounce
+            .field(key)
             .unwrap_or_else(|| panic!("{path}: no {key} in {line}"))
     };
     let hash = u64::from_str_radix(field("hash").trim_start_matches("0x"), 16).unwrap();
@@ -363,6 +363,6 @@ fn cycle_estimates_of_bounce_draw_the_hosts_pixels() {
         scenes::BOUNCE_CAMERA,
         (Method::TARGET_DEFAULT, "", Options::DEFAULT),
     );
-    assert_eq!(words.get(2).copied(), Some(label.as_str()), "{path}: {line}");
+    assert_eq!(bounce.method(), label, "{path}: {line}");
     assert_eq!((hash, pixels), (host_hash, host_pixels), "{path}: {line}");
 }

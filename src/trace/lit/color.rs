@@ -36,7 +36,7 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
 
     /// [`Self::color`], inlined: the colour runs (a `DrawTarget`'s path) take it in
     /// their row loop, so a pixel pays no call, and no save of the FP registers the
-    /// shading uses (`vpush d8–d15`, about 90 cycles a pixel on a Cortex-M4F).
+    /// shading uses (`vpush d8–d15`; its cost: `docs/firmware.md`, "Lit frames").
     #[inline(always)]
     pub(super) fn shade(&mut self, first: Option<(ObjectId, f32)>, d: Vec3, i: u32) -> Rgb888 {
         let f = self.f;

@@ -9,6 +9,9 @@ use heapless::Vec;
 use crate::error::{BandError, FrameError};
 use crate::render::Render;
 
+use crate::method::Arithmetic;
+
+use super::plan_integer::IntRule;
 use super::region::{edge, Area, Entry, Region};
 
 /// At most this many regions (silhouettes and rectangles) a frame re-traces; more draw
@@ -48,7 +51,7 @@ const MAX_STRIPS: usize = 48;
 
 /// The plan of one frame: the regions that can have changed, their rectangles and strips.
 ///
-/// It takes at most 996 bytes on a 32-bit target (checked when the crate compiles), on
+/// It takes at most 1,008 bytes on a 32-bit target (checked when the crate compiles), on
 /// the stack beside the render's own while a frame draws.
 #[derive(Clone, Debug)]
 pub struct Changes {
@@ -67,12 +70,14 @@ pub struct Changes {
     pub(super) pad: u8,
     pub(super) full: bool,
     pub(super) refused: Option<FrameError>,
+    /// The integer kernel's rule for the frame, where the plan asked it.
+    pub(super) int_rule: IntRule,
 }
 
 // The plan sits on the stack beside the render's own while a frame draws (the size the
 // `Incremental` and `Changes` docs state).
 #[cfg(target_pointer_width = "32")]
-const _: () = assert!(size_of::<Changes>() <= 996);
+const _: () = assert!(size_of::<Changes>() <= 1008);
 
 impl Changes {
     pub(super) fn empty(size: Size, strip_setup: u32, pad: u32) -> Self {
@@ -86,7 +91,13 @@ impl Changes {
             pad: u8::try_from(pad).unwrap_or(u8::MAX),
             full: false,
             refused: None,
+            int_rule: IntRule::Unknown,
         }
+    }
+
+    pub(super) fn with_rule(mut self, rule: IntRule) -> Self {
+        self.int_rule = rule;
+        self
     }
 
     pub(super) fn full(size: Size) -> Self {
@@ -203,6 +214,17 @@ impl Changes {
     #[must_use]
     pub fn refused(&self) -> Option<FrameError> {
         self.refused
+    }
+
+    /// The arithmetic that draws the frame: [`Arithmetic::Integer`] where the method
+    /// asks for the integer kernel and its per-frame rule takes the frame, as
+    /// [`Render::arithmetic`] says of the same render.
+    #[must_use]
+    pub fn arithmetic(&self) -> Arithmetic {
+        match self.int_rule {
+            IntRule::Took(_) => Arithmetic::Integer,
+            IntRule::Unknown | IntRule::Refused => Arithmetic::F32,
+        }
     }
 
     /// The rectangles traced (image coordinates), disjoint.

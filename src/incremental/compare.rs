@@ -16,6 +16,8 @@ use crate::scene::sphere::Sphere;
 use crate::scene::{Scene, Settings};
 use crate::trace::options::{Options, SecondaryOrigin};
 
+use super::plan_integer::IntRule;
+
 /// What the display shows: the inputs of the last frame drawn, never its pixels.
 #[derive(Clone, Debug)]
 pub(super) struct Shown<const N: usize, const L: usize, const P: usize, const D: usize> {
@@ -27,6 +29,8 @@ pub(super) struct Shown<const N: usize, const L: usize, const P: usize, const D:
     pub(super) offset: Point,
     /// The target's bounding box (for bands: the image).
     pub(super) target: Rectangle,
+    /// The integer kernel's rule for this frame, as its plan found it.
+    pub(super) int_rule: IntRule,
 }
 
 impl<const N: usize, const L: usize, const P: usize, const D: usize> Shown<N, L, P, D> {

@@ -60,7 +60,10 @@ use embedded_graphics::primitives::Rectangle;
 use crate::error::FrameError;
 use crate::render::Render;
 
+use crate::method::Arithmetic;
+
 use compare::Shown;
+use plan_integer::IntRule;
 
 mod can_shadow; // which spheres a moved sphere's shadow can fall on (rule step 2)
 mod changes; // the plan: its regions, rectangles and strips; a band traced for DMA
@@ -78,7 +81,7 @@ pub use runs::{Runs, MERGE_GAP};
 ///
 /// The pixels traced are the area of the rectangles the render was clipped to, where the
 /// kernel traced every pixel its spans reach.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct FrameStats {
     /// The whole frame was drawn (the first frame, a frame-wide change, or too many
@@ -96,14 +99,33 @@ pub struct FrameStats {
     /// The frame could not be drawn exactly ([`Render::check`]): nothing was sent, and
     /// the next frame is drawn whole.
     pub refused: Option<FrameError>,
+    /// The arithmetic that drew the frame, or would have drawn a refused one
+    /// ([`Changes::arithmetic`]): what [`Render::arithmetic`] says of the render, without
+    /// deciding the integer kernel's per-frame rule again.
+    pub arithmetic: Arithmetic,
+}
+
+impl Default for FrameStats {
+    fn default() -> Self {
+        Self {
+            full: false,
+            traced: 0,
+            sent: 0,
+            windows: 0,
+            strips: 0,
+            refused: None,
+            arithmetic: Arithmetic::F32,
+        }
+    }
 }
 
 /// What the display shows, remembered for the next frame to draw only what changed.
 ///
 /// It remembers the scene, camera and render settings of the last frame drawn, never its
 /// pixels: its size is the scene's (`size_of::<Scene<N, L, P, D>>()`: 32 bytes a sphere
-/// of capacity `N`, 24 a light, 56 a plane, and 40) and 128 bytes more. While it draws,
-/// its plan of the frame ([`Changes`], at most 996 bytes on a 32-bit target) is on the
+/// of capacity `N`, 24 a light, 56 a plane, and 40) and at most 136 bytes more on a
+/// 32-bit target (checked when the crate compiles). While it draws,
+/// its plan of the frame ([`Changes`], at most 1,008 bytes on a 32-bit target) is on the
 /// stack beside the render's own; the stack a frame takes, measured on the Cortex-M4F
 /// against the same frame drawn whole, is in `docs/animation.md`.
 ///
@@ -147,6 +169,9 @@ pub struct Incremental<const N: usize, const L: usize = 0, const P: usize = 0, c
     /// A part of the image (image coordinates) the display no longer shows.
     stale: Option<Rectangle>,
 }
+
+#[cfg(target_pointer_width = "32")]
+const _: () = assert!(size_of::<Incremental<1>>() - size_of::<crate::scene::Scene<1>>() <= 136);
 
 impl<const N: usize, const L: usize, const P: usize, const D: usize> Default for Incremental<N, L, P, D> {
     fn default() -> Self {
@@ -219,7 +244,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         let shown = self.shown.take();
         let result = plan.draw(render, target);
         match (&result, plan.refused) {
-            (Ok(_), None) => self.remember(render, bbox),
+            (Ok(_), None) => self.remember(render, bbox, plan.int_rule),
             _ => drop(shown),
         }
         result
@@ -240,7 +265,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         let image = Rectangle::new(Point::zero(), render.camera().size());
         let plan = self.plan_at(render, image, Point::zero());
         if plan.refused.is_none() {
-            self.remember_at(render, image, Point::zero());
+            self.remember_at(render, image, Point::zero(), plan.int_rule);
         } else {
             self.invalidate();
         }
@@ -250,12 +275,18 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
     // Inlined: an out-of-line call taking the render's address would make its method a
     // value in memory for the whole draw, and every method's kernel would be linked.
     #[inline(always)]
-    fn remember<C>(&mut self, render: &Render<'_, N, C, L, P, D>, target: Rectangle) {
-        self.remember_at(render, target, render.offset());
+    fn remember<C>(&mut self, render: &Render<'_, N, C, L, P, D>, target: Rectangle, int_rule: IntRule) {
+        self.remember_at(render, target, render.offset(), int_rule);
     }
 
     #[inline(always)]
-    fn remember_at<C>(&mut self, render: &Render<'_, N, C, L, P, D>, target: Rectangle, offset: Point) {
+    fn remember_at<C>(
+        &mut self,
+        render: &Render<'_, N, C, L, P, D>,
+        target: Rectangle,
+        offset: Point,
+        int_rule: IntRule,
+    ) {
         self.shown = Some(Shown {
             scene: render.scene().clone(),
             params: *render.camera().params(),
@@ -264,6 +295,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             options: render.options(),
             offset,
             target,
+            int_rule,
         });
         self.stale = None;
     }

@@ -22,6 +22,7 @@ use crate::trace::lit::ties::same_ties;
 use crate::trace::options::Options;
 
 use super::can_shadow::can_shadow;
+use super::plan_integer::IntRule;
 use super::{Changes, Incremental, STRIP_SETUP};
 
 impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental<N, L, P, D> {
@@ -40,18 +41,27 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         target: Rectangle,
         offset: Point,
     ) -> Changes {
-        let camera = render.camera();
-        let size = camera.size();
-        let scene = render.scene();
-        let features = Scene::<N, L, P, D>::FEATURES;
         let integer = render.method().arithmetic == Arithmetic::Integer
-            && !features
+            && !Scene::<N, L, P, D>::FEATURES
             && render.sampling() == Sampling::Center;
+        let mut rule = IntRule::Unknown;
         if integer {
             if let Some(plan) = self.plan_integer(render, target, offset) {
                 return plan;
             }
+            rule = IntRule::Refused;
         }
+        self.plan_f32(render, target, offset).with_rule(rule)
+    }
+
+    /// The rule for a frame the `f32` method draws.
+    // Inlined, as `Render::draw` is: with a constant method only its code is linked.
+    #[inline(always)]
+    fn plan_f32<C>(&self, render: &Render<'_, N, C, L, P, D>, target: Rectangle, offset: Point) -> Changes {
+        let camera = render.camera();
+        let size = camera.size();
+        let scene = render.scene();
+        let features = Scene::<N, L, P, D>::FEATURES;
         let new = dispatch(
             render.method(),
             Probe {

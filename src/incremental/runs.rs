@@ -84,6 +84,7 @@ impl Changes {
         let mut stats = FrameStats {
             full: self.full,
             refused: self.refused,
+            arithmetic: self.arithmetic(),
             ..FrameStats::default()
         };
         if self.refused.is_some() {

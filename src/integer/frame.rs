@@ -126,9 +126,20 @@ struct Plan {
     e: i32,
 }
 
-/// The integer kernel's frame-wide quantisation of `scene` seen by `camera` — the pixel
-/// unit, focal length, shade shift and length unit — or `None` where its per-frame rule
-/// does not take the frame.
+/// The integer kernel's frame-wide quantisation: pixel unit `k`, focal length `F`,
+/// shade shift `p` and length unit `e` ([module docs](self)). Two frames with equal
+/// quantisations give every sphere the same integer picture from the same inputs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Quantisation {
+    f: i32,
+    // The rule's ranges: 0 ≤ k ≤ 60, 0 ≤ p < 2⁸, −1100 ≤ e ≤ 60.
+    e: i16,
+    k: u8,
+    p: u8,
+}
+
+/// The integer kernel's frame-wide quantisation of `scene` seen by `camera`, or `None`
+/// where its per-frame rule does not take the frame.
 ///
 /// For each sphere `pick` selects, the rows and the cut its rows are culled with are
 /// passed to `f` (the others' silhouettes are not computed). What an incremental frame
@@ -140,7 +151,7 @@ pub(crate) fn regions<const N: usize>(
     options: Options,
     pick: impl Fn(usize) -> bool,
     mut f: impl FnMut((u32, u32), IntCut),
-) -> Option<[i32; 4]> {
+) -> Option<Quantisation> {
     let mut buf: Vec<IntSphere, N> = Vec::new();
     let plan = plan(scene, camera, options, buf.as_mut_view(), &pick)?;
     for s in &buf {
@@ -148,7 +159,50 @@ pub(crate) fn regions<const N: usize>(
             f(s.rows, s.cut);
         }
     }
-    Some([plan.k as i32, plan.f, plan.p as i32, plan.e])
+    Some(Quantisation {
+        f: plan.f,
+        e: plan.e as i16,
+        k: plan.k as u8,
+        p: plan.p as u8,
+    })
+}
+
+/// The rows and cut of each sphere `pick` selects, as [`regions`] passes them, for a
+/// frame whose rule is known to take it: the silhouettes alone, without the rule's
+/// quantisation and bounds (a frame's cuts do not depend on them).
+pub(crate) fn cuts(
+    scene: &[Sphere],
+    camera: &Camera,
+    options: Options,
+    pick: impl Fn(usize) -> bool,
+    mut f: impl FnMut((u32, u32), IntCut),
+) {
+    for (index, s) in scene.iter().enumerate() {
+        if pick(index) {
+            let (rows, cut) = sphere_cut(s, camera, options, true);
+            f(rows, cut);
+        }
+    }
+}
+
+/// A sphere's rows and cut: its silhouette where it is `culled` and culling is on
+/// ([`Silhouette::ALL`] otherwise), enlarged to cover the quantisation's 1/16 pixel.
+fn sphere_cut(s: &Sphere, camera: &Camera, options: Options, culled: bool) -> ((u32, u32), IntCut) {
+    let silhouette = if options.span_culling && culled {
+        // A direction error of pw/16 enlarges the f32 silhouette by ≥ 1/8 pixel: it
+        // covers the integer picture's 1/16.
+        Silhouette::new(
+            s.center - camera.eye(),
+            s.radius,
+            camera,
+            Margin::Linear,
+            camera.pixel_width() / 16.0,
+        )
+    } else {
+        Silhouette::ALL
+    };
+    let rows = silhouette.rows(camera.size().height);
+    (rows, silhouette.int_cut(rows))
 }
 
 impl<'a> IntFrame<'a> {
@@ -332,14 +386,7 @@ fn plan(
             return None;
         }
         let a2 = lxi * lxi - c;
-        let silhouette = if options.span_culling && cull(index) {
-            // A direction error of pw/16 enlarges the f32 silhouette by ≥ 1/8 pixel:
-            // it covers the integer picture's 1/16.
-            Silhouette::new(lv, s.radius, camera, Margin::Linear, pw / 16.0)
-        } else {
-            Silhouette::ALL
-        };
-        let rows = silhouette.rows(camera.size().height);
+        let (rows, cut) = sphere_cut(s, camera, options, cull(index));
         let _ = spheres.push(IntSphere {
             index,
             lx: lx as i32,
@@ -353,7 +400,7 @@ fn plan(
             dd: 2 * i128::from(a2) * i128::from(s_col * s_col),
             rgb: [s.color.r(), s.color.g(), s.color.b()],
             rows,
-            cut: silhouette.int_cut(rows),
+            cut,
         });
     }
     Some(Plan {

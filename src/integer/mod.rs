@@ -23,7 +23,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
-pub(crate) use frame::{regions, IntFrame};
+pub(crate) use frame::{cuts, regions, IntFrame, Quantisation};
 use frame::{IntSphere, Refusal};
 use row::{draw_rows, Active};
 

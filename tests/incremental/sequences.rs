@@ -104,6 +104,12 @@ where
                 "draw: {stats:?}, but the frame's check says {expected:?}"
             ));
         }
+        if stats.arithmetic != render.arithmetic() {
+            return Err(format!(
+                "draw: {stats:?}, but the render's arithmetic is {:?}",
+                render.arithmetic()
+            ));
+        }
         let mut full = Buffer::new(self.target.size, self.fill);
         render.draw(full.clipped_to(self.target.clip)).unwrap();
         // A refused frame draws nothing: the display keeps the last frame.
@@ -120,6 +126,13 @@ where
                 "update: refused {:?}, full {}, but the frame's check says {expected:?}",
                 changes.refused(),
                 changes.is_full()
+            ));
+        }
+        if changes.arithmetic() != render.arithmetic() {
+            return Err(format!(
+                "update: arithmetic {:?}, but the render's is {:?}",
+                changes.arithmetic(),
+                render.arithmetic()
             ));
         }
         let (width, height) = (self.image.size.width, self.image.size.height);

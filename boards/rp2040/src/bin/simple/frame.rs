@@ -30,8 +30,8 @@ pub struct Film<'a, const N: usize, const M: usize> {
 /// Frame `k` of `film` into `scene` (a working copy) and onto `display` through
 /// `shown`: only what changed since the frame `shown` remembers is traced and
 /// sent. The integer kernel, or the `f32` kernel where the integer kernel's rule
-/// refuses the frame, after `check` (a frame `f32` cannot draw exactly is refused
-/// rather than left half-drawn). Returns the kernel that drew it. After a display
+/// refuses the frame; a frame `f32` cannot draw exactly is refused rather than left
+/// half-drawn. Returns the kernel that drew it. After a display
 /// error the display's content is unknown: the next frame is drawn whole.
 pub fn frame<D, const N: usize, const M: usize>(
     display: &mut D,
@@ -48,23 +48,14 @@ where
         .apply_frame(film.scene, &film.camera, k, scene, &mut params)
         .map_err(Failed::Motion)?;
     let camera = params.build().map_err(Failed::Camera)?;
-    // Each use builds its own render. `check` is not inlined, and once a render's
-    // address has gone to such a call the optimiser no longer takes its method for the
-    // constant it was built with: `shown.draw` would dispatch on it at run time and
-    // link every method's code (about 30) instead of the integer kernel and its `f32`
-    // fallback alone.
-    let render = || Render::new(&*scene, &camera).with_method(Method::INTEGER);
-    // The integer kernel's per-frame rule is soft `f64` on a chip without an FPU: it
-    // is decided once here (`check` would decide it again), and `check` runs only for
-    // the `f32` kernel, which is what it checks.
-    let arithmetic = render().arithmetic();
-    if arithmetic != Arithmetic::Integer {
-        render().check().map_err(Failed::Frame)?;
-    }
-    match shown.draw(&render(), display) {
+    // The plan refuses what `Render::check` refuses (`stats.refused`), and says which
+    // kernel drew the frame (`stats.arithmetic`): neither the check nor the integer
+    // kernel's per-frame rule, soft `f64` on a chip without an FPU, runs twice.
+    let render = Render::new(&*scene, &camera).with_method(Method::INTEGER);
+    match shown.draw(&render, display) {
         Ok(stats) => match stats.refused {
             Some(why) => Err(Failed::Frame(why)),
-            None => Ok((arithmetic, stats)),
+            None => Ok((stats.arithmetic, stats)),
         },
         Err(e) => {
             shown.invalidate();

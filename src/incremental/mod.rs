@@ -60,6 +60,9 @@ use embedded_graphics::primitives::Rectangle;
 use crate::error::FrameError;
 use crate::render::Render;
 
+use heapless::Vec;
+
+use crate::integer::IntSphere;
 use crate::method::Arithmetic;
 
 use compare::Shown;
@@ -239,10 +242,13 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         Tg: DrawTarget<Color = C>,
     {
         let bbox = target.bounding_box();
-        let plan = self.plan(render, bbox);
+        // The integer kernel's picture of the frame, built by the plan where the rule
+        // takes the frame and drawn from: the rule is decided once.
+        let mut picture: Vec<IntSphere, N> = Vec::new();
+        let plan = self.plan(render, bbox, Some(picture.as_mut_view()));
         // What the display shows if the draw fails is unknown: forget it until done.
         let shown = self.shown.take();
-        let result = plan.draw(render, target);
+        let result = plan.draw(render, target, &picture);
         match (&result, plan.refused) {
             (Ok(_), None) => self.remember(render, bbox, plan.int_rule),
             _ => drop(shown),
@@ -263,7 +269,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         C: PixelColor + From<Rgb888>,
     {
         let image = Rectangle::new(Point::zero(), render.camera().size());
-        let plan = self.plan_at(render, image, Point::zero());
+        let plan = self.plan_at(render, image, Point::zero(), None);
         if plan.refused.is_none() {
             self.remember_at(render, image, Point::zero(), plan.int_rule);
         } else {

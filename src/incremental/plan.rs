@@ -6,8 +6,11 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::camera::cone::ViewCone;
 use crate::camera::span::{Margin, Silhouette};
+use heapless::VecView;
+
 use crate::camera::Camera;
 use crate::error::FrameError;
+use crate::integer::IntSphere;
 use crate::math::SqrtFn;
 use crate::method::dispatch::{dispatch, Visit};
 use crate::method::intersect::{Scale, SphereGeom, TestStrategy};
@@ -25,14 +28,32 @@ use super::can_shadow::can_shadow;
 use super::plan_integer::IntRule;
 use super::{Changes, Incremental, STRIP_SETUP};
 
+/// Whether the render asks for the integer kernel on a frame it can draw (spheres only,
+/// one ray a pixel): where its rule decides.
+// Inlined: with a constant method this is a constant.
+#[inline(always)]
+pub(super) fn integer_kind<const N: usize, C, const L: usize, const P: usize, const D: usize>(
+    render: &Render<'_, N, C, L, P, D>,
+) -> bool {
+    render.method().arithmetic == Arithmetic::Integer
+        && !Scene::<N, L, P, D>::FEATURES
+        && render.sampling() == Sampling::Center
+}
+
 impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental<N, L, P, D> {
     // Inlined, as `Render::draw` is: with a constant method only its code is linked.
     #[inline(always)]
-    pub(super) fn plan<C>(&self, render: &Render<'_, N, C, L, P, D>, target: Rectangle) -> Changes {
-        self.plan_at(render, target, render.offset())
+    pub(super) fn plan<C>(
+        &self,
+        render: &Render<'_, N, C, L, P, D>,
+        target: Rectangle,
+        picture: Option<&mut VecView<IntSphere>>,
+    ) -> Changes {
+        self.plan_at(render, target, render.offset(), picture)
     }
 
-    /// The rule (module docs), once per frame.
+    /// The rule (module docs), once per frame; with `picture`, the integer kernel's
+    /// picture of the frame where its rule takes it, for the draw.
     // Inlined, as `Render::draw` is: with a constant method only its code is linked.
     #[inline(always)]
     pub(super) fn plan_at<C>(
@@ -40,13 +61,11 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         render: &Render<'_, N, C, L, P, D>,
         target: Rectangle,
         offset: Point,
+        picture: Option<&mut VecView<IntSphere>>,
     ) -> Changes {
-        let integer = render.method().arithmetic == Arithmetic::Integer
-            && !Scene::<N, L, P, D>::FEATURES
-            && render.sampling() == Sampling::Center;
         let mut rule = IntRule::Unknown;
-        if integer {
-            if let Some(plan) = self.plan_integer(render, target, offset) {
+        if integer_kind(render) {
+            if let Some(plan) = self.plan_integer(render, target, offset, picture) {
                 return plan;
             }
             rule = IntRule::Refused;

@@ -3,8 +3,9 @@
 
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
+use heapless::VecView;
 
-use crate::integer::Quantisation;
+use crate::integer::{IntSphere, Quantisation};
 use crate::method::dispatch::dispatch;
 use crate::render::Render;
 
@@ -40,6 +41,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         render: &Render<'_, N, C, L, P, D>,
         target: Rectangle,
         offset: Point,
+        picture: Option<&mut VecView<IntSphere>>,
     ) -> Option<Changes> {
         let (camera, scene, options) = (render.camera(), render.scene(), render.options());
         let size = camera.size();
@@ -47,8 +49,14 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             Some(shown) if shown.same_frame(render, target, offset) => shown,
             // The whole frame, if the integer kernel's rule takes it.
             _ => {
-                let key =
-                    crate::integer::regions::<N>(scene.spheres(), camera, options, |_| false, |_, _| {})?;
+                let key = match picture {
+                    Some(buf) => {
+                        crate::integer::picture(buf, scene.spheres(), camera, options, |_| false, |_, _| {})
+                    }
+                    None => {
+                        crate::integer::regions::<N>(scene.spheres(), camera, options, |_| false, |_, _| {})
+                    }
+                }?;
                 return Some(Changes::full(size).with_rule(IntRule::Took(key)));
             }
         };
@@ -58,7 +66,10 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         let mut add = |rows: (u32, u32), cut| ok &= plan.push_cut(rows, cut);
         // Each frame's quantisation, found with its changed spheres' cuts: the cuts are
         // the plan only if the two quantisations are equal.
-        let new_key = crate::integer::regions::<N>(scene.spheres(), camera, options, changed, &mut add);
+        let new_key = match picture {
+            Some(buf) => crate::integer::picture(buf, scene.spheres(), camera, options, changed, &mut add),
+            None => crate::integer::regions::<N>(scene.spheres(), camera, options, changed, &mut add),
+        };
         let old_key = match shown.int_rule {
             IntRule::Took(key) => {
                 crate::integer::cuts(shown.scene.spheres(), camera, options, changed, &mut add);

@@ -7,9 +7,12 @@ use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 
+use crate::integer::IntSphere;
 use crate::render::Render;
 use crate::trace::scanline::{ColorRuns, PixelRow, RowSink};
 
+use super::plan::integer_kind;
+use super::plan_integer::IntRule;
 use super::region::{edge, Area};
 use super::{Changes, FrameStats, MAX_REGIONS};
 
@@ -76,6 +79,7 @@ impl Changes {
         &self,
         render: &Render<'_, N, C, L, P, D>,
         target: &mut Tg,
+        picture: &[IntSphere],
     ) -> Result<FrameStats, Tg::Error>
     where
         C: PixelColor + From<Rgb888>,
@@ -113,7 +117,19 @@ impl Changes {
             full: self.full,
             color: PhantomData,
         };
-        render.render_clips(clips, offset, &mut sink)?;
+        match self.int_rule {
+            // The integer kernel's frame from the picture the plan built.
+            IntRule::Took(key) if integer_kind(render) => crate::integer::render_picture::<N, _, _>(
+                picture,
+                key,
+                render.scene().background(),
+                render.camera(),
+                clips,
+                offset,
+                &mut sink,
+            )?,
+            _ => render.render_clips(clips, offset, &mut sink)?,
+        }
         Ok(stats)
     }
 }

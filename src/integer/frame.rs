@@ -126,6 +126,17 @@ struct Plan {
     e: i32,
 }
 
+impl Plan {
+    fn key(&self) -> Quantisation {
+        Quantisation {
+            f: self.f,
+            e: self.e as i16,
+            k: self.k as u8,
+            p: self.p as u8,
+        }
+    }
+}
+
 /// The integer kernel's frame-wide quantisation: pixel unit `k`, focal length `F`,
 /// shade shift `p` and length unit `e` ([module docs](self)). Two frames with equal
 /// quantisations give every sphere the same integer picture from the same inputs.
@@ -159,12 +170,28 @@ pub(crate) fn regions<const N: usize>(
             f(s.rows, s.cut);
         }
     }
-    Some(Quantisation {
-        f: plan.f,
-        e: plan.e as i16,
-        k: plan.k as u8,
-        p: plan.p as u8,
-    })
+    Some(plan.key())
+}
+
+/// The rule and the integer picture of every sphere into `buf`, as the draw builds
+/// them ([`IntFrame::from_picture`] draws it), or `None` where the rule does not take
+/// the frame; the rows and cut of each sphere `pick` selects are passed to `f`, as
+/// [`regions`] passes them.
+pub(crate) fn picture(
+    buf: &mut VecView<IntSphere>,
+    scene: &[Sphere],
+    camera: &Camera,
+    options: Options,
+    pick: impl Fn(usize) -> bool,
+    mut f: impl FnMut((u32, u32), IntCut),
+) -> Option<Quantisation> {
+    let plan = plan(scene, camera, options, buf, &|_| true)?;
+    for s in buf.iter() {
+        if pick(s.index) {
+            f(s.rows, s.cut);
+        }
+    }
+    Some(plan.key())
 }
 
 /// The rows and cut of each sphere `pick` selects, as [`regions`] passes them, for a
@@ -219,16 +246,31 @@ impl<'a> IntFrame<'a> {
         clip: Rectangle,
         offset: Point,
     ) -> Result<Self, Refusal> {
-        let plan = plan(scene, camera, options, buf, &|_| true).ok_or(Refusal::Bounds)?;
+        let key = plan(scene, camera, options, buf, &|_| true)
+            .ok_or(Refusal::Bounds)?
+            .key();
+        Self::from_picture(buf, key, background, camera, clip, offset).ok_or(Refusal::Invisible)
+    }
+
+    /// The frame of a picture the rule has built ([`picture`], with its quantisation
+    /// `key`), or `None` where `clip` shows none of it.
+    pub(crate) fn from_picture(
+        spheres: &'a [IntSphere],
+        key: Quantisation,
+        background: Rgb888,
+        camera: &'a Camera,
+        clip: Rectangle,
+        offset: Point,
+    ) -> Option<Self> {
         // Clipped as the f32 frame is.
-        let (i0, i1, j0, j1) = visible(camera.size(), offset, clip).ok_or(Refusal::Invisible)?;
-        Ok(Self {
+        let (i0, i1, j0, j1) = visible(camera.size(), offset, clip)?;
+        Some(Self {
             camera,
-            k: plan.k,
-            f: plan.f,
-            p: plan.p,
-            lambda: libm::ldexpf(1.0, plan.e),
-            spheres: buf,
+            k: u32::from(key.k),
+            f: key.f,
+            p: u32::from(key.p),
+            lambda: libm::ldexpf(1.0, i32::from(key.e)),
+            spheres,
             background,
             i0,
             i1,

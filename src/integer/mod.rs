@@ -23,8 +23,8 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
-pub(crate) use frame::{cuts, regions, IntFrame, Quantisation};
-use frame::{IntSphere, Refusal};
+use frame::Refusal;
+pub(crate) use frame::{cuts, picture, regions, IntFrame, IntSphere, Quantisation};
 use row::{draw_rows, Active};
 
 use crate::camera::Camera;
@@ -116,7 +116,6 @@ pub(crate) fn render<const N: usize, K: RowSink, I: Iterator<Item = Rectangle> +
     sink: &mut K,
 ) -> Option<Result<(), K::Error>> {
     let mut int_spheres: Vec<IntSphere, N> = Vec::new();
-    let mut active: Vec<Active<'_>, N> = Vec::new();
     let Some(bound) = clips.clone().reduce(hull) else {
         return Some(Ok(()));
     };
@@ -129,19 +128,47 @@ pub(crate) fn render<const N: usize, K: RowSink, I: Iterator<Item = Rectangle> +
         bound,
         offset,
     ) {
-        Ok(mut frame) => {
-            for clip in clips {
-                let Some((i0, i1, j0, j1)) = visible(camera.size(), offset, clip) else {
-                    continue;
-                };
-                (frame.i0, frame.i1, frame.j0, frame.j1) = (i0, i1, j0, j1);
-                if let Err(e) = draw_rows(&frame, active.as_mut_view(), sink) {
-                    return Some(Err(e));
-                }
-            }
-            Some(Ok(()))
-        }
+        Ok(frame) => Some(draw_clips::<N, K, I>(frame, clips, sink)),
         Err(Refusal::Invisible) => Some(Ok(())),
         Err(Refusal::Bounds) => None,
     }
+}
+
+/// [`render`] of a picture the rule has built ([`picture`], quantised by `key`): the
+/// same frame without deciding the rule again.
+#[inline(never)]
+pub(crate) fn render_picture<const N: usize, K: RowSink, I: Iterator<Item = Rectangle> + Clone>(
+    picture: &[IntSphere],
+    key: Quantisation,
+    background: Rgb888,
+    camera: &Camera,
+    clips: I,
+    offset: Point,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    let Some(bound) = clips.clone().reduce(hull) else {
+        return Ok(());
+    };
+    match IntFrame::from_picture(picture, key, background, camera, bound, offset) {
+        Some(frame) => draw_clips::<N, K, I>(frame, clips, sink),
+        None => Ok(()),
+    }
+}
+
+/// The rows of each of `clips` that the frame shows.
+#[inline(always)]
+fn draw_clips<const N: usize, K: RowSink, I: Iterator<Item = Rectangle>>(
+    mut frame: IntFrame<'_>,
+    clips: I,
+    sink: &mut K,
+) -> Result<(), K::Error> {
+    let mut active: Vec<Active<'_>, N> = Vec::new();
+    for clip in clips {
+        let Some((i0, i1, j0, j1)) = visible(frame.camera.size(), frame.offset, clip) else {
+            continue;
+        };
+        (frame.i0, frame.i1, frame.j0, frame.j1) = (i0, i1, j0, j1);
+        draw_rows(&frame, active.as_mut_view(), sink)?;
+    }
+    Ok(())
 }

@@ -56,14 +56,12 @@
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-
-use crate::error::FrameError;
-use crate::render::Render;
-
 use heapless::Vec;
 
+use crate::error::FrameError;
 use crate::integer::IntSphere;
 use crate::method::Arithmetic;
+use crate::render::Render;
 
 use compare::Shown;
 use plan_integer::IntRule;

@@ -10,7 +10,7 @@
 #![allow(dead_code)]
 
 use embedded_graphics::{geometry::Size, pixelcolor::Rgb888};
-use embedded_raytracer::motion::{Animation, Bounce, Circle, Motion};
+use embedded_raytracer::motion::{Animation, Bounce, Circle, Motion, Orbit};
 use embedded_raytracer::{
     CameraParams, Light, Material, Method, Options, Plane, Scene, SecondaryOrigin, Settings, Sphere, Vec3,
 };
@@ -299,6 +299,16 @@ pub const BOUNCE_CAMERA: CameraParams = camera(
 pub const BOUNCE_ANIMATION: Animation<1> = Animation::from_array([Motion::Bounce(Bounce::new(0, 1.5, 1.2))])
     .with_fps(25.0)
     .with_frames(30);
+/// `bounce` seen by a camera that orbits it: the ball bounces as in
+/// [`BOUNCE_ANIMATION`] and the camera turns once about the look-at point in the same
+/// 1.2 s, so every frame is drawn whole. 10 frames (36° apart, one bounce): the
+/// measurement of a lit frame from every side, not a frame rate to show.
+pub const BOUNCE_ORBIT_ANIMATION: Animation<2> = Animation::from_array([
+    Motion::Bounce(Bounce::new(0, 1.5, 1.2)),
+    Motion::Orbit(Orbit::new(1.2)),
+])
+.with_fps(10.0 / 1.2)
+.with_frames(10);
 
 /// `scenes/circling.toml` at rest: Lab #1 spheres only.
 pub static CIRCLING: Scene<3> = Scene::from_array(

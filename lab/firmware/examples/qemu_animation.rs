@@ -1,6 +1,7 @@
 //! Measurement firmware for animated scenes drawn with incremental frames: one cycle of
-//! `scenes/bounce.toml` (lit, shadowed, the default method) and of
-//! `scenes/circling.toml` (Lab #1 spheres, the integer kernel), each frame drawn through
+//! `scenes/bounce.toml` (lit, shadowed, the default method), of
+//! `scenes/circling.toml` (Lab #1 spheres, the integer kernel) and of `bounce` seen by a
+//! camera that orbits it (`orbit`: every frame whole), each frame drawn through
 //! `Incremental` onto a 240×240 `Rgb565` frame buffer (115,200 B: it fits the
 //! emulated STM32F405's 128 KiB and the AN505's), which stands for the display's own
 //! memory. Runs on the Cortex-M4F (QEMU `netduinoplus2`) and the Cortex-M33
@@ -138,7 +139,9 @@ mod fw {
     }
 
     /// One cycle of `animation` drawn incrementally, one line a frame. Inlined: the
-    /// method is a constant of each call, so only its code is linked.
+    /// method is a constant of each call, so only its code is linked. `WHOLE`: a
+    /// sequence whose every frame is drawn whole (the camera moves): no stack probe and
+    /// no baseline a frame (`full_instr 0`), no `stack` line.
     #[inline(always)]
     fn sequence<
         P: Platform,
@@ -148,6 +151,7 @@ mod fw {
         const D: usize,
         const M: usize,
         const INTEGER: bool,
+        const WHOLE: bool,
     >(
         run: &mut Run<P>,
         fb: &mut [Rgb565],
@@ -184,16 +188,18 @@ mod fw {
             let Ok(camera) = at.build() else { return false };
             // The same frame from a copy of what the display shows, under the stack
             // paint (the same pixels again; not timed: painting costs instructions).
-            let mut probe = shown.clone();
-            let mut scratch = Display {
-                px: &mut *fb,
-                bytes: 0,
-            };
-            let probed = run.stack(|| {
-                let render = Render::new(&scene, &camera).with_method(method());
-                let _ = probe.draw(&render, &mut scratch);
-            });
-            stack = stack.zip(probed).map(|(a, b)| a.max(b));
+            if !WHOLE {
+                let mut probe = shown.clone();
+                let mut scratch = Display {
+                    px: &mut *fb,
+                    bytes: 0,
+                };
+                let probed = run.stack(|| {
+                    let render = Render::new(&scene, &camera).with_method(method());
+                    let _ = probe.draw(&render, &mut scratch);
+                });
+                stack = stack.zip(probed).map(|(a, b)| a.max(b));
+            }
             let mut display = Display {
                 px: &mut *fb,
                 bytes: 0,
@@ -212,11 +218,15 @@ mod fw {
                 px: &mut row[..],
                 bytes: 0,
             };
-            let full_instr = run.timed(|| {
-                let _ = Render::new(&scene, &camera)
-                    .with_method(method())
-                    .draw(&mut whole);
-            });
+            let full_instr = if WHOLE {
+                0
+            } else {
+                run.timed(|| {
+                    let _ = Render::new(&scene, &camera)
+                        .with_method(method())
+                        .draw(&mut whole);
+                })
+            };
             run.platform.print(format_args!(
                 "anim {} frame {} traced {} sent {} windows {} bytes {} instr {} full_instr {} first {} strips {}",
                 name,
@@ -247,20 +257,22 @@ mod fw {
             px: &mut row[..],
             bytes: 0,
         };
-        let full_stack = run.stack(|| {
-            let _ = Render::new(&scene, &camera)
-                .with_method(method())
-                .draw(&mut whole);
-        });
-        match (stack, full_stack) {
-            (Some(incremental), Some(full)) => run.platform.print(format_args!(
-                "stack {} incremental {} full {}",
-                name, incremental, full
-            )),
-            _ => {
-                run.platform
-                    .print(format_args!("FAIL {} overran the stack region", name));
-                ok = false;
+        if !WHOLE {
+            let full_stack = run.stack(|| {
+                let _ = Render::new(&scene, &camera)
+                    .with_method(method())
+                    .draw(&mut whole);
+            });
+            match (stack, full_stack) {
+                (Some(incremental), Some(full)) => run.platform.print(format_args!(
+                    "stack {} incremental {} full {}",
+                    name, incremental, full
+                )),
+                _ => {
+                    run.platform
+                        .print(format_args!("FAIL {} overran the stack region", name));
+                    ok = false;
+                }
             }
         }
         // The display against the last frame's full render.
@@ -292,7 +304,7 @@ mod fw {
         else {
             abort("frame buffer already taken");
         };
-        let bounce = sequence::<_, 3, 1, 1, 0, 1, false>(
+        let bounce = sequence::<_, 3, 1, 1, 0, 1, false, false>(
             &mut run,
             fb,
             "bounce",
@@ -301,7 +313,7 @@ mod fw {
             &scenes::BOUNCE_ANIMATION,
         );
         fb.fill(Rgb565::BLACK);
-        let circling = sequence::<_, 3, 0, 0, 0, 3, true>(
+        let circling = sequence::<_, 3, 0, 0, 0, 3, true, false>(
             &mut run,
             fb,
             "circling",
@@ -309,7 +321,16 @@ mod fw {
             scenes::CIRCLING_CAMERA.with_size(Size::new(W, H)),
             &scenes::CIRCLING_ANIMATION,
         );
-        if !(bounce && circling) {
+        fb.fill(Rgb565::BLACK);
+        let orbit = sequence::<_, 3, 1, 1, 0, 2, false, true>(
+            &mut run,
+            fb,
+            "orbit",
+            &scenes::BOUNCE,
+            scenes::BOUNCE_CAMERA.with_size(Size::new(W, H)),
+            &scenes::BOUNCE_ORBIT_ANIMATION,
+        );
+        if !(bounce && circling && orbit) {
             run.platform.print(format_args!("FAIL an animated sequence"));
             run.platform.exit(false);
         }

@@ -143,8 +143,14 @@ fn the_firmwares_incremental_frames_are_the_hosts() {
         &scenes::CIRCLING_ANIMATION,
         Method::INTEGER,
     );
+    let orbit = host(
+        &scenes::BOUNCE,
+        scenes::BOUNCE_CAMERA,
+        &scenes::BOUNCE_ORBIT_ANIMATION,
+        Method::TARGET_DEFAULT,
+    );
     for (path, run) in runs() {
-        for (name, (frames, hash)) in [("bounce", &bounce), ("circling", &circling)] {
+        for (name, (frames, hash)) in [("bounce", &bounce), ("circling", &circling), ("orbit", &orbit)] {
             let fw = run
                 .frames
                 .get(name)

@@ -64,6 +64,7 @@ use crate::method::Arithmetic;
 use crate::render::Render;
 
 use compare::Shown;
+use plan::integer_kind;
 use plan_integer::IntRule;
 
 mod can_shadow; // which spheres a moved sphere's shadow can fall on (rule step 2)
@@ -239,6 +240,10 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         C: PixelColor + From<Rgb888>,
         Tg: DrawTarget<Color = C>,
     {
+        // Decided first, while the render's method is still the constant it was built
+        // with (after a call the optimiser may read it back as a value, and link every
+        // method's kernel).
+        let integer = integer_kind(render);
         let bbox = target.bounding_box();
         // The integer kernel's picture of the frame, built by the plan where the rule
         // takes the frame and drawn from: the rule is decided once.
@@ -246,7 +251,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         let plan = self.plan(render, bbox, Some(picture.as_mut_view()));
         // What the display shows if the draw fails is unknown: forget it until done.
         let shown = self.shown.take();
-        let result = plan.draw(render, target, &picture);
+        let result = plan.draw(render, target, integer.then_some(&picture[..]));
         match (&result, plan.refused) {
             (Ok(_), None) => self.remember(render, bbox, plan.int_rule),
             _ => drop(shown),

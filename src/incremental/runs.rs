@@ -11,7 +11,6 @@ use crate::integer::IntSphere;
 use crate::render::Render;
 use crate::trace::scanline::{ColorRuns, PixelRow, RowSink};
 
-use super::plan::integer_kind;
 use super::plan_integer::IntRule;
 use super::region::{edge, Area};
 use super::{Changes, FrameStats, MAX_REGIONS};
@@ -79,7 +78,7 @@ impl Changes {
         &self,
         render: &Render<'_, N, C, L, P, D>,
         target: &mut Tg,
-        picture: &[IntSphere],
+        picture: Option<&[IntSphere]>,
     ) -> Result<FrameStats, Tg::Error>
     where
         C: PixelColor + From<Rgb888>,
@@ -117,9 +116,9 @@ impl Changes {
             full: self.full,
             color: PhantomData,
         };
-        match self.int_rule {
+        match (self.int_rule, picture) {
             // The integer kernel's frame from the picture the plan built.
-            IntRule::Took(key) if integer_kind(render) => crate::integer::render_picture::<N, _, _>(
+            (IntRule::Took(key), Some(picture)) => crate::integer::render_picture::<N, _, _>(
                 picture,
                 key,
                 render.scene().background(),

@@ -95,9 +95,11 @@ impl Changes {
         }
     }
 
-    pub(super) fn with_rule(mut self, rule: IntRule) -> Self {
-        self.int_rule = rule;
-        self
+    /// The whole frame, for the integer kernel's `rule`.
+    pub(super) fn full_with(size: Size, rule: IntRule) -> Self {
+        let mut plan = Self::full(size);
+        plan.int_rule = rule;
+        plan
     }
 
     pub(super) fn full(size: Size) -> Self {

@@ -182,6 +182,7 @@ mod tests {
             options: Options::default(),
             offset: Point::zero(),
             target: Rectangle::new(Point::zero(), Size::new(8, 8)),
+            int_rule: IntRule::Unknown,
         }
     }
 

@@ -70,7 +70,11 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
             }
             rule = IntRule::Refused;
         }
-        self.plan_f32(render, target, offset).with_rule(rule)
+        // Set in place: the plan is about 1 KB, and a by-value setter copied it on the
+        // stack.
+        let mut plan = self.plan_f32(render, target, offset);
+        plan.int_rule = rule;
+        plan
     }
 
     /// The rule for a frame the `f32` method draws.

@@ -57,7 +57,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
                         crate::integer::regions::<N>(scene.spheres(), camera, options, |_| false, |_, _| {})
                     }
                 }?;
-                return Some(Changes::full(size).with_rule(IntRule::Took(key)));
+                return Some(Changes::full_with(size, IntRule::Took(key)));
             }
         };
         let changed = |k: usize| shown.changed(scene, k);
@@ -84,7 +84,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         match (old_key, new_key) {
             (None, None) => return None,
             (Some(a), Some(b)) if a == b => {}
-            (_, Some(_)) => return Some(Changes::full(size).with_rule(rule)),
+            (_, Some(_)) => return Some(Changes::full_with(size, rule)),
             (Some(_), None) => {
                 let probe = Probe {
                     scene,
@@ -92,22 +92,22 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
                     sampling: render.sampling(),
                     options,
                 };
-                return Some(
-                    match dispatch(render.method(), probe) {
-                        Ok(_) => Changes::full(size),
-                        Err(why) => Changes::refusal(size, why),
-                    }
-                    .with_rule(rule),
-                );
+                let mut plan = match dispatch(render.method(), probe) {
+                    Ok(_) => Changes::full(size),
+                    Err(why) => Changes::refusal(size, why),
+                };
+                plan.int_rule = rule;
+                return Some(plan);
             }
         }
         if let Some(stale) = self.stale {
             ok &= plan.push_rect(stale);
         }
         if !ok {
-            return Some(Changes::full(size).with_rule(rule));
+            return Some(Changes::full_with(size, rule));
         }
         plan.merge();
-        Some(plan.with_rule(rule))
+        plan.int_rule = rule;
+        Some(plan)
     }
 }

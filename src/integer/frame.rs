@@ -161,16 +161,10 @@ pub(crate) fn regions<const N: usize>(
     camera: &Camera,
     options: Options,
     pick: impl Fn(usize) -> bool,
-    mut f: impl FnMut((u32, u32), IntCut),
+    f: impl FnMut((u32, u32), IntCut),
 ) -> Option<Quantisation> {
     let mut buf: Vec<IntSphere, N> = Vec::new();
-    let plan = plan(scene, camera, options, buf.as_mut_view(), &pick)?;
-    for s in &buf {
-        if pick(s.index) {
-            f(s.rows, s.cut);
-        }
-    }
-    Some(plan.key())
+    rule_into(buf.as_mut_view(), scene, camera, options, &pick, &pick, f)
 }
 
 /// The rule and the integer picture of every sphere into `buf`, as the draw builds
@@ -183,9 +177,23 @@ pub(crate) fn picture(
     camera: &Camera,
     options: Options,
     pick: impl Fn(usize) -> bool,
+    f: impl FnMut((u32, u32), IntCut),
+) -> Option<Quantisation> {
+    rule_into(buf, scene, camera, options, &|_| true, &pick, f)
+}
+
+/// The rule into `buf`, the silhouettes of the spheres `cull` selects, then the rows
+/// and cut of each sphere `pick` selects passed to `f`: [`regions`] and [`picture`].
+fn rule_into(
+    buf: &mut VecView<IntSphere>,
+    scene: &[Sphere],
+    camera: &Camera,
+    options: Options,
+    cull: &dyn Fn(usize) -> bool,
+    pick: &impl Fn(usize) -> bool,
     mut f: impl FnMut((u32, u32), IntCut),
 ) -> Option<Quantisation> {
-    let plan = plan(scene, camera, options, buf, &|_| true)?;
+    let plan = plan(scene, camera, options, buf, cull)?;
     for s in buf.iter() {
         if pick(s.index) {
             f(s.rows, s.cut);

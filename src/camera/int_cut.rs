@@ -29,8 +29,9 @@ use super::span::{Ellipse, Silhouette, TWO_M16, TWO_M17, TWO_M20, TWO_M50};
 ///   square);
 /// - the centre `xc0 + kx·dy` from `xc0` and `kx` rounded to `2⁻¹⁶` and `dy₁₂`:
 ///   within `e = 2⁻¹⁷ + 2⁻¹⁷·|dy| + (|kx| + 2⁻¹⁷)·2⁻¹² + 2⁻¹⁶` (the last the shift's
-///   floor), taken at the sphere's largest `|dy|` ([`Silhouette::rows`]) and added to
-///   the pad with the pad's relative part at its largest;
+///   floor), taken at the largest `|dy|` of the cut's rows
+///   ([`Silhouette::int_cut_rows`]) and added to the pad with the pad's relative part
+///   at its largest;
 /// - `lo = ⌊xc − hw − pad⌋`, `hi = ⌊xc + hw + pad⌋ + 1`.
 ///
 /// Where the ranges that keep its coefficients in 32 bits and its products in 64 do
@@ -57,8 +58,17 @@ pub(crate) enum IntCut {
 }
 
 impl Silhouette {
-    /// The integer cut of this silhouette for the rows `[j0, j1)` ([`Self::rows`]).
-    pub(crate) fn int_cut(&self, (j0, j1): (u32, u32)) -> IntCut {
+    /// The integer cut of this silhouette and the rows `[j0, j1)` of `0..height`
+    /// outside which its [`IntCut::row_span`] is `None`.
+    ///
+    /// The rows are found by binary search on the cut's own fixed-point test (no
+    /// floating point per row): its `hw²` bound is non-increasing in `m`, and `m` falls
+    /// then rises with `j`, so the rows passing it are an interval around the centre
+    /// row. They hold every row the exact formula reaches ([`IntCut`]'s rounding is
+    /// outward), so every row a hit can reach. The cut's pad is then taken at those
+    /// rows' largest `|dy|`. Outside the fixed-point ranges, every column of every row.
+    pub(crate) fn int_cut_rows(&self, height: u32) -> ((u32, u32), IntCut) {
+        let all = ((0, height), IntCut::All);
         let Some(Ellipse {
             y0i,
             y0f,
@@ -68,37 +78,103 @@ impl Silhouette {
             kx,
         }) = self.get()
         else {
-            return IntCut::All;
+            return all;
         };
         let [y0i, y0f, q, h0, xc0, kx] = [y0i, y0f, q, h0, xc0, kx].map(f64::from);
-        let y0 = y0i + y0f;
-        let dy_max = (f64::from(j0) - y0).abs().max((f64::from(j1) - y0).abs());
         // h0·(1 + 2⁻¹⁶) rounded up (two f64 roundings of 2⁻⁵³ each, under 2⁻⁵⁰).
         let h0_up = h0 * (1.0 + TWO_M16) * (1.0 + TWO_M50);
-        let hw_max = libm::sqrt(h0_up.max(0.0));
-        let centre_err = TWO_M17 + TWO_M17 * dy_max + (kx.abs() + TWO_M17) / 4096.0 + TWO_M16;
-        let pad = 1.0 + (xc0.abs() + kx.abs() * dy_max + hw_max) * TWO_M20 + centre_err;
         // The comparisons also reject NaN.
-        if !(q > 0.0
-            && q < 256.0
-            && h0_up < 16_777_215.0
-            && kx.abs() < 32_768.0
-            && xc0.abs() < 32_768.0
-            && y0i.abs() <= 262_144.0
-            && dy_max < 32_768.0
-            && pad < 16.0)
-        {
-            return IntCut::All;
+        if !(q > 0.0 && q < 256.0 && h0_up < 16_777_215.0 && y0i.abs() <= 262_144.0) {
+            return all;
         }
-        IntCut::Ellipse {
+        if h0_up < 0.0 {
+            // No row: hw² < 0 at every dy.
+            return ((0, 0), IntCut::All);
+        }
+        let rows = Rows {
             // Exact: y0i·2¹² is an integer, y0f·2¹² is exact in f64.
             y12: (y0i * 4096.0) as i32 + libm::floor(y0f * 4096.0) as i32,
             q24: libm::floor(q * 16_777_216.0) as u32,
-            h8: libm::ceil(h0_up.max(0.0) * 256.0) as u32,
+            h8: libm::ceil(h0_up * 256.0) as u32,
+        };
+        let (j0, j1) = rows.interval(height);
+        if j0 >= j1 {
+            return ((j0, j1), IntCut::All);
+        }
+        let y0 = y0i + y0f;
+        let dy_max = (f64::from(j0) - y0).abs().max((f64::from(j1) - y0).abs());
+        let hw_max = libm::sqrt(h0_up);
+        let centre_err = TWO_M17 + TWO_M17 * dy_max + (kx.abs() + TWO_M17) / 4096.0 + TWO_M16;
+        let pad = 1.0 + (xc0.abs() + kx.abs() * dy_max + hw_max) * TWO_M20 + centre_err;
+        if !(kx.abs() < 32_768.0 && xc0.abs() < 32_768.0 && dy_max < 32_768.0 && pad < 16.0) {
+            return ((j0, j1), IntCut::All);
+        }
+        let cut = IntCut::Ellipse {
+            y12: rows.y12,
+            q24: rows.q24,
+            h8: rows.h8,
             xc16: libm::round(xc0 * 65_536.0) as i32,
             kx16: libm::round(kx * 65_536.0) as i32,
             pad16: libm::ceil(pad * 65_536.0) as i32,
-        }
+        };
+        ((j0, j1), cut)
+    }
+}
+
+/// The cut's row test: its coefficients `⌊2¹²·y0⌋`, `⌊2²⁴·q⌋` and
+/// `⌈2⁸·h0·(1 + 2⁻¹⁶)⌉` (`|y0| ≤ 2¹⁸ + 1`).
+#[derive(Clone, Copy)]
+struct Rows {
+    y12: i32,
+    q24: u32,
+    h8: u32,
+}
+
+impl Rows {
+    /// Row `j`'s `dy₁₂ = 2¹²·j − ⌊2¹²·y0⌋` and `2³²·hw²` bounded from above, or `None`
+    /// where that bound is below zero (no column).
+    #[inline(always)]
+    fn hw2(self, j: u32) -> Option<(i64, u64)> {
+        use crate::math::wide::mul_wide;
+        // 2¹²·dy in (dy12 − 1, dy12]; m ≤ 2¹²·|dy| < 2³¹ (j < 2¹⁶, |y0| ≤ 2¹⁸ + 1).
+        let dy12 = (i64::from(j) << 12) - i64::from(self.y12);
+        let m = (if dy12 > 0 { dy12 - 1 } else { -dy12 }) as u32;
+        let m2 = mul_wide(m, m);
+        // ⌊q24·m²/2¹⁶⌋ ≤ 2³²·q·dy² (q24·m² < 2⁹⁴).
+        let q_dy2 = ((u128::from(mul_wide(self.q24, (m2 >> 32) as u32)) << 32)
+            + u128::from(mul_wide(self.q24, m2 as u32)))
+            >> 16;
+        // 2³²·hw² at most 2²⁴·h8 − q_dy2 (below zero: no column).
+        let hw2 = (u128::from(self.h8) << 24).checked_sub(q_dy2)? as u64;
+        Some((dy12, hw2))
+    }
+
+    /// The rows of `0..height` whose test passes: an interval, since `m` falls to its
+    /// least at the last row with `dy₁₂ ≤ 0` or the first with `dy₁₂ > 0` and rises
+    /// on both sides, and the bound falls as `m` rises.
+    fn interval(self, height: u32) -> (u32, u32) {
+        let passes = |j: u32| self.hw2(j).is_some();
+        // The first row of `lo..hi` where a predicate false-then-true holds (`hi` if none).
+        let first = |mut lo: u32, mut hi: u32, p: &dyn Fn(u32) -> bool| {
+            while lo < hi {
+                let mid = lo + (hi - lo) / 2;
+                if p(mid) {
+                    hi = mid;
+                } else {
+                    lo = mid + 1;
+                }
+            }
+            lo
+        };
+        let p = first(0, height, &|j| (i64::from(j) << 12) > i64::from(self.y12));
+        let peak = [p.checked_sub(1), (p < height).then_some(p)]
+            .into_iter()
+            .flatten()
+            .find(|&j| passes(j));
+        let Some(m) = peak else {
+            return (0, 0);
+        };
+        (first(0, m, &passes), first(m + 1, height, &|j| !passes(j)))
     }
 }
 
@@ -107,7 +183,7 @@ impl IntCut {
     /// the sphere; `None` if none can.
     #[inline]
     pub(crate) fn row_span(&self, j: u32, width: u32) -> Option<(u32, u32)> {
-        use crate::math::wide::{isqrt32, mul_i32_wide, mul_wide};
+        use crate::math::wide::{isqrt32, mul_i32_wide};
         let IntCut::Ellipse {
             y12,
             q24,
@@ -119,17 +195,8 @@ impl IntCut {
         else {
             return Some((0, width));
         };
-        // 2¹²·dy in (dy12 − 1, dy12]; m ≤ 2¹²·|dy| < 2²⁷.
-        let dy12 = (i64::from(j) << 12) - i64::from(y12);
-        let m = (if dy12 > 0 { dy12 - 1 } else { -dy12 }) as u32;
-        let m2 = mul_wide(m, m);
-        // ⌊q24·m²/2¹⁶⌋ ≤ 2³²·q·dy² (q24·m² < 2⁸⁶).
-        let q_dy2 = ((u128::from(mul_wide(q24, (m2 >> 32) as u32)) << 32)
-            + u128::from(mul_wide(q24, m2 as u32)))
-            >> 16;
-        // 2³²·hw² at most 2²⁴·h8 − q_dy2 (below zero: no column), then 2⁶·hw² rounded
-        // up.
-        let hw2 = (u128::from(h8) << 24).checked_sub(q_dy2)? as u64;
+        let (dy12, hw2) = Rows { y12, q24, h8 }.hw2(j)?;
+        // 2⁶·hw² rounded up.
         let v = (hw2 >> 26) + u64::from(hw2 & ((1 << 26) - 1) != 0);
         let Ok(v) = u32::try_from(v) else {
             return Some((0, width));

@@ -39,8 +39,8 @@
 //!   a cylinder's cut on a plane: where a shadow can be seen), all through `ellipse` and
 //!   `conic`; and a silhouette's rows, [`Silhouette::rows`];
 //! - once per row, the cuts: [`Silhouette::row_span`] in `f32`, the integer kernel's
-//!   [`IntCut`](super::int_cut::IntCut) (`camera/int_cut.rs`, with
-//!   [`Silhouette::int_cut`]), and a band of rows' reach and inside
+//!   [`IntCut`](super::int_cut::IntCut) (`camera/int_cut.rs`, with its rows,
+//!   [`Silhouette::int_cut_rows`]), and a band of rows' reach and inside
 //!   ([`Silhouette::band_reach`], [`Silhouette::band_inside`]);
 //! - the tests, `camera/span/tests.rs`; the cone of the image's rays, which leaves
 //!   whole spheres out, `camera/cone.rs`.

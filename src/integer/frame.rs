@@ -78,10 +78,10 @@ pub(crate) struct IntSphere {
     pub(super) dd: i128,
     /// The object colour's channels.
     pub(super) rgb: [u8; 3],
-    /// Where on the image its rays can hit it: the rows `[j0, j1)` outside which it has
-    /// no span ([`Silhouette::rows`]) and the cut of each row ([`IntCut`]), both of the
-    /// `f32` silhouette enlarged to cover the quantisation's 1/16 pixel; a row finds
-    /// its columns without soft float.
+    /// Where on the image its rays can hit it: the cut of each row ([`IntCut`]) of the
+    /// `f32` silhouette enlarged to cover the quantisation's 1/16 pixel, and the rows
+    /// `[j0, j1)` outside which the cut has no span ([`Silhouette::int_cut_rows`]); rows
+    /// and columns are found without soft float.
     pub(super) rows: (u32, u32),
     pub(super) cut: IntCut,
 }
@@ -236,8 +236,7 @@ fn sphere_cut(s: &Sphere, camera: &Camera, options: Options, culled: bool) -> ((
     } else {
         Silhouette::ALL
     };
-    let rows = silhouette.rows(camera.size().height);
-    (rows, silhouette.int_cut(rows))
+    silhouette.int_cut_rows(camera.size().height)
 }
 
 impl<'a> IntFrame<'a> {

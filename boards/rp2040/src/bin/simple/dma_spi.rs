@@ -7,6 +7,10 @@
 //! last one is on the wire (double buffering). A write waits only for the chunk before
 //! the one in flight.
 //!
+//! A write of a few bytes (a command, its parameters) goes straight into SPI1's
+//! transmit FIFO instead, after the chunk in flight: setting up a transfer and copying
+//! into a chunk costs the core more than the FIFO's eight entries take to fill.
+//!
 //! The DC pin ([`Dc`]) shares the bus: before it changes, the DMA transfer finishes
 //! and the last bit leaves the wire, and CS goes high, so every byte reaches the panel
 //! with the DC it was written with, as through `ExclusiveDevice`'s blocking writes. CS
@@ -23,6 +27,10 @@ use rp2040_hal::spi::{self as hal_spi, Enabled, Spi, ValidSpiPinout};
 
 /// Bytes a chunk holds: mipidsi's pixel buffer (`main.rs`) is written in one chunk.
 pub const CHUNK: usize = 512;
+
+/// Writes of at most this many bytes go into the transmit FIFO (eight entries deep)
+/// without DMA.
+const SHORT: usize = 8;
 
 /// A chunk buffer and how many of its bytes are to be sent.
 pub struct Chunk {
@@ -95,8 +103,19 @@ where
     }
 
     /// `bytes` out by DMA, a chunk at a time; returns once the last chunk is started.
+    /// A short write, into the transmit FIFO once the chunk in flight is sent.
     fn write(&mut self, bytes: &[u8]) {
         let Ok(()) = self.cs.set_low();
+        if bytes.len() <= SHORT {
+            let Some((ch, mut spi)) = self.settle() else {
+                return;
+            };
+            for &byte in bytes {
+                let Ok(()) = embedded_hal_nb::nb::block!(FullDuplex::write(&mut spi, byte));
+            }
+            self.wire = Some(Wire::Idle(ch, spi));
+            return;
+        }
         for part in bytes.chunks(CHUNK) {
             // With at most one chunk in flight, one is free.
             let Some(mut chunk) = self.free.pop() else {

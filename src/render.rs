@@ -537,6 +537,30 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
         offset: Point,
         sink: &mut K,
     ) -> Result<(), K::Error> {
+        self.render_clips_as(clips, offset, sink, self.method.arithmetic == Arithmetic::Integer)
+    }
+
+    /// [`Self::render_clips`] by the `f32` method alone: an integer render's frame where
+    /// its kernel's rule is known to refuse it (the integer kernel's code is then not
+    /// linked for the caller).
+    #[inline(always)]
+    pub(crate) fn render_clips_f32<K: RowSink, I: Iterator<Item = Rectangle> + Clone>(
+        &self,
+        clips: I,
+        offset: Point,
+        sink: &mut K,
+    ) -> Result<(), K::Error> {
+        self.render_clips_as(clips, offset, sink, false)
+    }
+
+    #[inline(always)]
+    fn render_clips_as<K: RowSink, I: Iterator<Item = Rectangle> + Clone>(
+        &self,
+        clips: I,
+        offset: Point,
+        sink: &mut K,
+        integer: bool,
+    ) -> Result<(), K::Error> {
         dispatch(
             self.method,
             Frame {
@@ -547,7 +571,7 @@ impl<const N: usize, C, const L: usize, const P: usize, const D: usize> Render<'
                 clips,
                 offset,
                 sink,
-                integer: self.method.arithmetic == Arithmetic::Integer,
+                integer,
             },
         )
     }

@@ -48,7 +48,8 @@
 //! same code: it is the same. Inside it, the pixels are traced by the render itself,
 //! clipped to rectangles around the regions: a clipped render's pixels are the whole
 //! render's. The regions are cut into runs per row; runs of a row closer than
-//! [`MERGE_GAP`] pixels are sent as one.
+//! [`MERGE_GAP`] pixels are sent as one. A frame the integer kernel draws sends each
+//! strip whole instead ([`Incremental::draw`]).
 //!
 //! More than [`MAX_REGIONS`] regions, or one that is not a bounded ellipse (culling off,
 //! a sphere around the eye), draw the whole frame: slower, never wrong.
@@ -93,7 +94,8 @@ pub struct FrameStats {
     pub traced: u32,
     /// Pixels sent to the display.
     pub sent: u32,
-    /// Runs (one `fill_contiguous` each) they were sent in.
+    /// Windows (one `fill_contiguous` each) they were sent in: the changed runs, or,
+    /// for a frame the integer kernel draws, the strips.
     pub windows: u32,
     /// Strips (rectangles of rows) traced, as one frame that pays its set-up once;
     /// under adaptive sampling each strip is a frame of its own.
@@ -222,8 +224,12 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
     ///
     /// It traces the pixels that can differ (see the [module rule](crate::incremental))
     /// and sends each changed run of a row as its own `fill_contiguous`, so an SPI
-    /// display driver sends only that window. Afterwards the target shows `render`'s
-    /// full frame, bit for bit.
+    /// display driver sends only that window. A frame the integer kernel draws (a chip
+    /// without an FPU) sends each strip it traces as one `fill_contiguous` instead: the
+    /// strips follow the runs to within [`STRIP_SETUP`] pixels, and there a window a
+    /// strip costs the core far less than one a run (each window is a few commands
+    /// through the driver). Afterwards the target shows `render`'s full frame, bit for
+    /// bit.
     ///
     /// # Errors
     ///

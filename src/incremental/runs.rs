@@ -108,28 +108,47 @@ impl Changes {
             stats.traced += clip.size.width * clip.size.height;
             stats.strips += 1;
         }
-        let mut sink = RunSink {
-            target: &mut *target,
-            changes: self,
-            offset,
-            stats: &mut stats,
-            full: self.full,
-            color: PhantomData,
-        };
         match (self.int_rule, picture) {
-            // The integer kernel's frame from the picture the plan built.
-            (IntRule::Took(key), Some(picture)) => crate::integer::render_picture::<N, _, _>(
-                picture,
-                key,
-                render.scene().background(),
-                render.camera(),
-                clips,
-                offset,
-                &mut sink,
-            )?,
-            _ => render.render_clips(clips, offset, &mut sink)?,
+            // The integer kernel's frame from the picture the plan built, each strip one
+            // window.
+            (IntRule::Took(key), Some(picture)) => {
+                let (sent, windows) = crate::integer::fill_strips::<N, _, _, _>(
+                    picture,
+                    key,
+                    render.scene().background(),
+                    render.camera(),
+                    clips,
+                    offset,
+                    target,
+                )?;
+                stats.sent += sent;
+                stats.windows += windows;
+            }
+            (IntRule::Took(_), None) => {
+                render.render_clips(clips, offset, &mut self.sink(target, offset, &mut stats))?
+            }
+            // The rule refused the frame, or was not asked (not an integer kind of
+            // render): the f32 method's.
+            _ => render.render_clips_f32(clips, offset, &mut self.sink(target, offset, &mut stats))?,
         }
         Ok(stats)
+    }
+
+    /// The sink sending each changed run of a row as its own window.
+    fn sink<'t, 's, Tg: DrawTarget<Color = C>, C>(
+        &self,
+        target: &'t mut Tg,
+        offset: Point,
+        stats: &'s mut FrameStats,
+    ) -> RunSink<'t, '_, 's, Tg, C> {
+        RunSink {
+            target,
+            changes: self,
+            offset,
+            stats,
+            full: self.full,
+            color: PhantomData,
+        }
     }
 }
 

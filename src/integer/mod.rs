@@ -17,6 +17,7 @@
 mod frame;
 mod row;
 mod shade;
+mod strip;
 
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
@@ -26,6 +27,7 @@ use heapless::Vec;
 use frame::Refusal;
 pub(crate) use frame::{cuts, picture, regions, IntFrame, IntSphere, Quantisation};
 use row::{draw_rows, Active};
+pub(crate) use strip::fill_strips;
 
 use crate::camera::Camera;
 use crate::math::SqrtFn;
@@ -131,27 +133,6 @@ pub(crate) fn render<const N: usize, K: RowSink, I: Iterator<Item = Rectangle> +
         Ok(frame) => Some(draw_clips::<N, K, I>(frame, clips, sink)),
         Err(Refusal::Invisible) => Some(Ok(())),
         Err(Refusal::Bounds) => None,
-    }
-}
-
-/// [`render`] of a picture the rule has built ([`picture`], quantised by `key`): the
-/// same frame without deciding the rule again.
-#[inline(never)]
-pub(crate) fn render_picture<const N: usize, K: RowSink, I: Iterator<Item = Rectangle> + Clone>(
-    picture: &[IntSphere],
-    key: Quantisation,
-    background: Rgb888,
-    camera: &Camera,
-    clips: I,
-    offset: Point,
-    sink: &mut K,
-) -> Result<(), K::Error> {
-    let Some(bound) = clips.clone().reduce(hull) else {
-        return Ok(());
-    };
-    match IntFrame::from_picture(picture, key, background, camera, bound, offset) {
-        Some(frame) => draw_clips::<N, K, I>(frame, clips, sink),
-        None => Ok(()),
     }
 }
 

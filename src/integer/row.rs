@@ -14,9 +14,11 @@
 //! `D ≥ 0`; the rule admits only spheres wholly in front of the eye, so every hit has
 //! `t > 0`.
 
+use core::ops::DerefMut;
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
+
 use heapless::VecView;
 
 use super::frame::{IntFrame, IntSphere};
@@ -45,17 +47,9 @@ pub(super) fn draw_rows<'s, K: RowSink>(
     active: &mut VecView<Active<'s>>,
     sink: &mut K,
 ) -> Result<(), K::Error> {
-    let size = frame.camera.size();
-    let (w, h) = (size.width as i32, size.height as i32);
-    let s = 2i32 << frame.k;
     let width = frame.i1 - frame.i0;
-    let f = i64::from(frame.f);
     for j in frame.j0..frame.j1 {
-        let y = (h - 1 - 2 * j as i32) << frame.k;
-        // α = y² + F² ≤ |d|² ≤ 2⁵².
-        let alpha = i64::from(y) * i64::from(y) + f * f;
-        let x0 = (2 * frame.i0 as i32 + 1 - w) << frame.k;
-        let (lo_all, hi_all) = activate(frame, j, y, alpha, active);
+        let spans = activate(frame, j, active);
         let area = Rectangle::new(
             Point::new(
                 frame.offset.x.wrapping_add(frame.i0 as i32),
@@ -63,38 +57,28 @@ pub(super) fn draw_rows<'s, K: RowSink>(
             ),
             Size::new(width, 1),
         );
-        // a = x² + α and its first difference 2xs + s² at the first column.
-        let (xw, sw) = (i64::from(x0), i64::from(s));
-        let row = IntRow {
-            frame,
-            active,
-            lo_all,
-            hi_all,
-            i: frame.i0,
-            end: frame.i1,
-            j,
-            x: x0,
-            s,
-            a: xw * xw + alpha,
-            da: 2 * xw * sw + sw * sw,
-            dda: 2 * sw * sw,
-            alpha,
-        };
+        let mut row = IntRow::new(frame, &mut **active);
+        row.begin(j, spans);
         sink.row(area, row)?;
     }
     Ok(())
 }
 
+/// Row `j`'s `y` (in the pixel unit `2⁻ᵏ` half-pixels) and `α = y² + F²`
+/// (`≤ |d|² ≤ 2⁵²`).
+#[inline(always)]
+fn row_y(frame: &IntFrame<'_>, j: u32) -> (i32, i64) {
+    let h = frame.camera.size().height as i32;
+    let y = (h - 1 - 2 * j as i32) << frame.k;
+    let f = i64::from(frame.f);
+    (y, i64::from(y) * i64::from(y) + f * f)
+}
+
 /// Row `j`'s active spheres, each with `D`, `Δ` and `b` evaluated directly at its
 /// first visible column (exact), and the union of their spans.
 #[inline(never)]
-fn activate<'s>(
-    frame: &IntFrame<'s>,
-    j: u32,
-    y: i32,
-    alpha: i64,
-    active: &mut VecView<Active<'s>>,
-) -> (u32, u32) {
+pub(super) fn activate<'s>(frame: &IntFrame<'s>, j: u32, active: &mut VecView<Active<'s>>) -> (u32, u32) {
+    let (y, alpha) = row_y(frame, j);
     active.clear();
     let width = frame.camera.size().width;
     let (mut lo_all, mut hi_all) = (frame.i1, frame.i0);
@@ -134,10 +118,11 @@ fn activate<'s>(
     (lo_all, hi_all)
 }
 
-/// One row of the integer kernel as a sink takes it.
-struct IntRow<'r, 's, 'c> {
+/// One row of the integer kernel: the frame, the row's active spheres (`A`: borrowed
+/// from the frame's rows, or owned by a strip's pixels) and the row's state.
+pub(super) struct IntRow<'s, 'c, A> {
     frame: &'s IntFrame<'c>,
-    active: &'r mut [Active<'c>],
+    active: A,
     lo_all: u32,
     hi_all: u32,
     i: u32,
@@ -154,7 +139,86 @@ struct IntRow<'r, 's, 'c> {
     alpha: i64,
 }
 
-impl<'c> IntRow<'_, '_, 'c> {
+impl<'s, 'c, A: DerefMut<Target = [Active<'c>]>> IntRow<'s, 'c, A> {
+    /// No row yet ([`Self::begin`] starts one).
+    #[inline(always)]
+    pub(super) fn new(frame: &'s IntFrame<'c>, active: A) -> Self {
+        Self {
+            frame,
+            active,
+            lo_all: 0,
+            hi_all: 0,
+            i: frame.i1,
+            end: frame.i1,
+            j: 0,
+            x: 0,
+            s: 2i32 << frame.k,
+            a: 0,
+            da: 0,
+            dda: 0,
+            alpha: 0,
+        }
+    }
+
+    /// The frame, and the row's active spheres (for [`activate`]).
+    pub(super) fn parts(&mut self) -> (&'s IntFrame<'c>, &mut A) {
+        (self.frame, &mut self.active)
+    }
+
+    /// Row `j` at the frame's first visible column, its spheres activated
+    /// ([`activate`]) with the union of their spans `spans`.
+    #[inline(always)]
+    pub(super) fn begin(&mut self, j: u32, (lo_all, hi_all): (u32, u32)) {
+        let (_, alpha) = row_y(self.frame, j);
+        let w = self.frame.camera.size().width as i32;
+        let x0 = (2 * self.frame.i0 as i32 + 1 - w) << self.frame.k;
+        // a = x² + α and its first difference 2xs + s² at the first column.
+        let (xw, sw) = (i64::from(x0), i64::from(self.s));
+        self.lo_all = lo_all;
+        self.hi_all = hi_all;
+        self.i = self.frame.i0;
+        self.end = self.frame.i1;
+        self.j = j;
+        self.x = x0;
+        self.a = xw * xw + alpha;
+        self.da = 2 * xw * sw + sw * sw;
+        self.dda = 2 * sw * sw;
+        self.alpha = alpha;
+    }
+
+    /// The background columns before the row's traced ones and after them; the row
+    /// then stands at its first traced column and ends after its last.
+    #[inline(always)]
+    pub(super) fn enter_traced(&mut self) -> (u32, u32) {
+        let (lo, hi) = if self.lo_all < self.hi_all {
+            (self.lo_all, self.hi_all)
+        } else {
+            (self.end, self.end)
+        };
+        let before = lo - self.i;
+        let after = self.end - hi;
+        self.skip(before);
+        self.end = hi;
+        (before, after)
+    }
+
+    /// The row's next traced colour, or `None` past its last traced column.
+    #[inline(always)]
+    pub(super) fn next_traced(&mut self) -> Option<Rgb888> {
+        let i = self.i;
+        if i >= self.end {
+            return None;
+        }
+        let (_, color) = self.trace(i);
+        self.step();
+        Some(color)
+    }
+
+    /// The traced columns left.
+    fn traced_left(&self) -> usize {
+        (self.end - self.i) as usize
+    }
+
     /// One column to the right: `x`, and `a` by its exact differences.
     #[inline(always)]
     fn step(&mut self) {
@@ -212,26 +276,18 @@ impl<'c> IntRow<'_, '_, 'c> {
     }
 }
 
-impl PixelRow for IntRow<'_, '_, '_> {
+impl<'c, A: DerefMut<Target = [Active<'c>]>> PixelRow for IntRow<'_, 'c, A> {
     fn samples(self) -> impl Iterator<Item = Sample> {
         IntSamples(self)
     }
 
     #[inline(always)]
     fn color_runs(mut self) -> ColorRuns<impl Iterator<Item = Rgb888>> {
-        let (lo, hi) = if self.lo_all < self.hi_all {
-            (self.lo_all, self.hi_all)
-        } else {
-            (self.end, self.end)
-        };
-        let before = lo - self.i;
-        let after = self.end - hi;
-        self.skip(before);
-        self.end = hi;
+        let (before, after) = self.enter_traced();
         ColorRuns {
             background: self.frame.background,
             before,
-            traced_len: hi - lo,
+            traced_len: self.end - self.i,
             traced: IntColors(self),
             after,
         }
@@ -239,25 +295,18 @@ impl PixelRow for IntRow<'_, '_, '_> {
 }
 
 /// A row's traced colours.
-struct IntColors<'r, 's, 'c>(IntRow<'r, 's, 'c>);
+struct IntColors<'s, 'c, A>(IntRow<'s, 'c, A>);
 
-impl Iterator for IntColors<'_, '_, '_> {
+impl<'c, A: DerefMut<Target = [Active<'c>]>> Iterator for IntColors<'_, 'c, A> {
     type Item = Rgb888;
 
     #[inline(always)]
     fn next(&mut self) -> Option<Rgb888> {
-        let row = &mut self.0;
-        let i = row.i;
-        if i >= row.end {
-            return None;
-        }
-        let (_, color) = row.trace(i);
-        row.step();
-        Some(color)
+        self.0.next_traced()
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {
-        let n = (self.0.end - self.0.i) as usize;
+        let n = self.0.traced_left();
         (n, Some(n))
     }
 }
@@ -265,9 +314,9 @@ impl Iterator for IntColors<'_, '_, '_> {
 /// A row's samples (the trace path, [`Render::trace`](crate::Render::trace)): the
 /// colour and hit of the integer kernel, the direction and `t` converted to `f32` for
 /// the caller (off the drawing path).
-struct IntSamples<'r, 's, 'c>(IntRow<'r, 's, 'c>);
+struct IntSamples<'s, 'c, A>(IntRow<'s, 'c, A>);
 
-impl Iterator for IntSamples<'_, '_, '_> {
+impl<'c, A: DerefMut<Target = [Active<'c>]>> Iterator for IntSamples<'_, 'c, A> {
     type Item = Sample;
 
     fn next(&mut self) -> Option<Sample> {

@@ -15,7 +15,7 @@ const KINDS = [
   ['`memcpy`, `memset`', /mem(cpy|set|clr|move|cmp)/],
   ['`libm`', /^libm::/],
   ['the kernel', /embedded_raytracer::/],
-  ['traced pixels (in iterators)', /^<(core::iter|&mut I|I as core::iter)/],
+  ['pixels (the kernel inlined into the pixel loop)', /^<(core::iter|&mut I|I as core::iter)|::send_pixels$/],
   ['driver and HAL', /mipidsi|ssd1306|display_interface|rp2040_hal|embedded_hal|::dma_spi::/],
   ['text', /embedded_graphics|core::fmt|flt2dec|heapless|::status$|::show$/],
 ];
@@ -25,11 +25,12 @@ const LEGEND =
   '64-bit shifts: `__aeabi_llsl`, `__aeabi_llsr`, `__aeabi_lasr`; integer division: ' +
   '`__aeabi_uidiv`, `__aeabi_uldivmod` and their helpers; other: `__clzsi2` (the soft float\'s ' +
   'normalisation) and the rest; `libm`: the motion\'s `sinf`/`cosf`, ' +
-  '`sqrt`; the kernel: `embedded_raytracer`\'s functions that were not inlined; traced ' +
-  'pixels (in iterators): `core::iter` adapters (`Chain::next`, `Map::fold`) that the drivers ' +
-  'pull pixels from, the kernel\'s per-pixel work (the integer kernel\'s discriminant, root ' +
-  'and shade) inlined into them — the adapters\' own part is a few instructions a pixel ' +
-  '(`lab/emulator/src/run.mjs --pc-part 1` profiles them by instruction); driver and HAL: ' +
+  '`sqrt`; the kernel: `embedded_raytracer`\'s functions that were not inlined; pixels: ' +
+  'the loop that pulls pixels and turns them into wire bytes (mipidsi\'s `send_pixels`, with ' +
+  'the status line\'s pixels too) and the `core::iter` adapters (`Chain::next`, `Map::fold`) ' +
+  'the drivers pull from, the kernel\'s per-pixel work (the integer kernel\'s discriminant, ' +
+  'root and shade) inlined into them (`lab/emulator/src/run.mjs --pc-part 1` profiles them ' +
+  'by instruction); driver and HAL: ' +
   '`mipidsi`, `ssd1306`, `display-interface`, `rp2040-hal`, `simple`\'s `dma_spi` — pixels ' +
   'into wire bytes, and the waits for the wire; text: the status line\'s font and formatting.';
 const kindOf = (fn) => (KINDS.find(([, re]) => re.test(fn)) || ['other'])[0];

@@ -38,17 +38,29 @@ impl DrawTarget for SliceTarget<'_> {
         Ok(())
     }
 
-    /// Rows arrive as one `fill_contiguous` each: copy them straight in (the render
-    /// only sends rows already clipped to the target).
+    /// A row of a frame, or a run or strip of an incremental one, arrives as one
+    /// `fill_contiguous`, already clipped to the target: copy it straight in, a row at
+    /// a time.
     fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
         &mut self,
         area: &Rectangle,
         colors: I,
     ) -> Result<(), Infallible> {
-        let start = (area.top_left.y as usize) * self.size.width as usize + area.top_left.x as usize;
-        let n = (area.size.width * area.size.height) as usize;
-        for (px, c) in self.buf[start..start + n].iter_mut().zip(colors) {
-            *px = c;
+        let stride = self.size.width as usize;
+        let (w, h) = (area.size.width as usize, area.size.height as usize);
+        let start = (area.top_left.y as usize) * stride + area.top_left.x as usize;
+        if h == 1 {
+            for (px, c) in self.buf[start..start + w].iter_mut().zip(colors) {
+                *px = c;
+            }
+            return Ok(());
+        }
+        let mut colors = colors.into_iter();
+        for r in 0..h {
+            let row = start + r * stride;
+            for (px, c) in self.buf[row..row + w].iter_mut().zip(colors.by_ref()) {
+                *px = c;
+            }
         }
         Ok(())
     }

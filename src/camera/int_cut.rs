@@ -1,6 +1,6 @@
 //! A silhouette's per-row cut in integer arithmetic ([`IntCut`]), for the integer kernel.
 
-use super::span::{Ellipse, Silhouette, TWO_M16, TWO_M17, TWO_M20, TWO_M50};
+use super::span::{rows_around, Ellipse, Silhouette, TWO_M16, TWO_M17, TWO_M20, TWO_M50};
 
 /// A silhouette's per-row cut in integer arithmetic, for the integer kernel.
 ///
@@ -153,28 +153,8 @@ impl Rows {
     /// least at the last row with `dy₁₂ ≤ 0` or the first with `dy₁₂ > 0` and rises
     /// on both sides, and the bound falls as `m` rises.
     fn interval(self, height: u32) -> (u32, u32) {
-        let passes = |j: u32| self.hw2(j).is_some();
-        // The first row of `lo..hi` where a predicate false-then-true holds (`hi` if none).
-        let first = |mut lo: u32, mut hi: u32, p: &dyn Fn(u32) -> bool| {
-            while lo < hi {
-                let mid = lo + (hi - lo) / 2;
-                if p(mid) {
-                    hi = mid;
-                } else {
-                    lo = mid + 1;
-                }
-            }
-            lo
-        };
-        let p = first(0, height, &|j| (i64::from(j) << 12) > i64::from(self.y12));
-        let peak = [p.checked_sub(1), (p < height).then_some(p)]
-            .into_iter()
-            .flatten()
-            .find(|&j| passes(j));
-        let Some(m) = peak else {
-            return (0, 0);
-        };
-        (first(0, m, &passes), first(m + 1, height, &|j| !passes(j)))
+        let past = |j: u32| (i64::from(j) << 12) > i64::from(self.y12);
+        rows_around(height, &past, &|j| self.hw2(j).is_some())
     }
 }
 

@@ -413,28 +413,7 @@ impl Silhouette {
             return (0, height);
         }
         let cut = |j: u32| Self::row_cut(j, y0i, y0f, q, h0);
-        let inside = |j: u32| !(cut(j).1 < 0.0);
-        // The first row of `lo..hi` where a predicate false-then-true holds (`hi` if none).
-        let first = |mut lo: u32, mut hi: u32, p: &dyn Fn(u32) -> bool| {
-            while lo < hi {
-                let mid = lo + (hi - lo) / 2;
-                if p(mid) {
-                    hi = mid;
-                } else {
-                    lo = mid + 1;
-                }
-            }
-            lo
-        };
-        let p = first(0, height, &|j| cut(j).0 >= 0.0);
-        let peak = [p.checked_sub(1), (p < height).then_some(p)]
-            .into_iter()
-            .flatten()
-            .find(|&j| inside(j));
-        let Some(m) = peak else {
-            return (0, 0);
-        };
-        (first(0, m, &inside), first(m + 1, height, &|j| !inside(j)))
+        rows_around(height, &|j| cut(j).0 >= 0.0, &|j| !(cut(j).1 < 0.0))
     }
 
     /// The columns `[lo, hi)` of row `j` (clamped to the visible `[i0, i1)`) whose
@@ -473,6 +452,37 @@ impl Silhouette {
             }
         }
     }
+}
+
+/// The rows of `0..height` where `inside` holds, when they are an interval around the
+/// centre row: `inside` holds nowhere, or at the last row before the first where
+/// `past` holds (`past` false, then true) or at that row, and falls off on both sides.
+pub(super) fn rows_around(
+    height: u32,
+    past: &dyn Fn(u32) -> bool,
+    inside: &dyn Fn(u32) -> bool,
+) -> (u32, u32) {
+    // The first row of `lo..hi` where a predicate false-then-true holds (`hi` if none).
+    let first = |mut lo: u32, mut hi: u32, p: &dyn Fn(u32) -> bool| {
+        while lo < hi {
+            let mid = lo + (hi - lo) / 2;
+            if p(mid) {
+                hi = mid;
+            } else {
+                lo = mid + 1;
+            }
+        }
+        lo
+    };
+    let p = first(0, height, past);
+    let peak = [p.checked_sub(1), (p < height).then_some(p)]
+        .into_iter()
+        .flatten()
+        .find(|&j| inside(j));
+    let Some(m) = peak else {
+        return (0, 0);
+    };
+    (first(0, m, inside), first(m + 1, height, &|j| !inside(j)))
 }
 
 pub(super) const TWO_M10: f64 = 1.0 / 1024.0;

@@ -102,18 +102,34 @@ mod fw {
             Ok(())
         }
         /// One window: its commands, then its pixels stored in row order (every area
-        /// the kernel sends is one row within the display).
+        /// the kernel sends lies within the display: a run of a row, or a strip of
+        /// rows).
         fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
             &mut self,
             area: &Rectangle,
             colors: I,
         ) -> Result<(), Infallible> {
-            let start = self.start(area.top_left);
-            let n = (area.size.width * area.size.height) as usize;
-            self.bytes += 11 + 2 * n as u64;
-            if let Some(out) = self.px.get_mut(start..start + n) {
-                for (slot, c) in out.iter_mut().zip(colors) {
-                    *slot = c;
+            let (w, h) = (area.size.width as usize, area.size.height as usize);
+            self.bytes += 11 + 2 * (w * h) as u64;
+            if h == 1 {
+                // A row or a run of one: its pixels straight in.
+                let start = self.start(area.top_left);
+                if let Some(out) = self.px.get_mut(start..start + w) {
+                    for (slot, c) in out.iter_mut().zip(colors) {
+                        *slot = c;
+                    }
+                }
+                return Ok(());
+            }
+            let mut colors = colors.into_iter();
+            for r in 0..h {
+                let start = self.start(area.top_left + Point::new(0, r as i32));
+                match self.px.get_mut(start..start + w) {
+                    Some(out) => out
+                        .iter_mut()
+                        .zip(colors.by_ref())
+                        .for_each(|(slot, c)| *slot = c),
+                    None => colors.by_ref().take(w).for_each(drop),
                 }
             }
             Ok(())

@@ -66,9 +66,9 @@ impl Silhouette {
     /// then rises with `j`, so the rows passing it are an interval around the centre
     /// row. They hold every row the exact formula reaches ([`IntCut`]'s rounding is
     /// outward), so every row a hit can reach. The cut's pad is then taken at those
-    /// rows' largest `|dy|`. Outside the fixed-point ranges, every column of every row.
+    /// rows' largest `|dy|`. Outside the fixed-point ranges, every column: of the rows
+    /// [`Self::rows`] finds (soft `f32`, but rare), or of the rows the test found.
     pub(crate) fn int_cut_rows(&self, height: u32) -> ((u32, u32), IntCut) {
-        let all = ((0, height), IntCut::All);
         let Some(Ellipse {
             y0i,
             y0f,
@@ -78,14 +78,14 @@ impl Silhouette {
             kx,
         }) = self.get()
         else {
-            return all;
+            return ((0, height), IntCut::All);
         };
         let [y0i, y0f, q, h0, xc0, kx] = [y0i, y0f, q, h0, xc0, kx].map(f64::from);
         // h0·(1 + 2⁻¹⁶) rounded up (two f64 roundings of 2⁻⁵³ each, under 2⁻⁵⁰).
         let h0_up = h0 * (1.0 + TWO_M16) * (1.0 + TWO_M50);
         // The comparisons also reject NaN.
         if !(q > 0.0 && q < 256.0 && h0_up < 16_777_215.0 && y0i.abs() <= 262_144.0) {
-            return all;
+            return (self.rows(height), IntCut::All);
         }
         if h0_up < 0.0 {
             // No row: hw² < 0 at every dy.

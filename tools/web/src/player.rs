@@ -296,8 +296,9 @@ impl Player {
                 )
             }
         };
-        // Each changed run of a row is sent as its own window, as `Incremental::draw`
-        // sends it to a display driver (and a DMA sender sends `Changes::runs`).
+        // Each changed run of a row is sent as its own window, as a DMA sender sends
+        // `Changes::runs` (and `Incremental::draw` an `f32` frame; an integer frame it
+        // sends a strip at a time).
         self.screen.begin_frame();
         let (mut sent, mut windows) = (0, 0);
         if changes.refused().is_none() {

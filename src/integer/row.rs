@@ -15,10 +15,10 @@
 //! `t > 0`.
 
 use core::ops::DerefMut;
+
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
-
 use heapless::VecView;
 
 use super::frame::{IntFrame, IntSphere};

@@ -263,7 +263,7 @@ const METHODS: [Method; 2] = [Method::TARGET_DEFAULT, Method::LITERAL];
 /// The sweep of the issue: each standard scene (shrunk to 64×48) with a far sphere, a
 /// far plane and a far lamp at every magnitude, for the default and the literal method.
 #[test]
-#[ignore = "about a minute in release; run by .ci/run"]
+#[ignore = "about a minute in release; run by .ci/run (cargo test --test lab -- --ignored)"]
 fn far_objects_are_drawn_exactly_or_refused() {
     for name in SCENES.iter().chain(&FEATURE_SCENES) {
         let full = load_full(name);

@@ -5,7 +5,7 @@
 //! than 2 levels off, the reference's undecidable band excluded), told apart into shadow
 //! acne and light leaks (`sweeps::LitErrors`). Each sweep is the code
 //! `lab/examples/accuracy_table.rs` prints into the README; the figures in the comments
-//! were measured with `cargo test --release --test lit_stability -- --ignored
+//! were measured with `cargo test --release --test lab -- --ignored
 //! --nocapture` and `cargo run --release --features tools --example accuracy_table`.
 //!
 //! The default run uses shrunk images (a few seconds in a debug build); the native
@@ -112,7 +112,7 @@ fn scale_sweep_pins_the_epsilon() {
 /// at every scale from 100 (168 px; 898 at 10³, 13116 at 10^4.5); leaks from 3.2·10⁻³
 /// (17 px; 1156 at 10⁻³).
 #[test]
-#[ignore = "exhaustive: cargo test --release --test lit_stability -- --ignored"]
+#[ignore = "exhaustive: cargo test --release --test lab -- --ignored"]
 fn scale_sweep_native() {
     let f = standard::load_full("shadows");
     let points = sweeps::scale_sweep(&f.scene, &f.camera, f.camera.size(), &sweeps::lit_scales());
@@ -166,7 +166,7 @@ fn elevation_sweep_at_scale_31() {
 /// every elevation at scales 1 and 3.16, failing at every elevation at 31.6 (10 … 39
 /// px of acne).
 #[test]
-#[ignore = "exhaustive: cargo test --release --test lit_stability -- --ignored"]
+#[ignore = "exhaustive: cargo test --release --test lab -- --ignored"]
 fn elevation_sweep_native() {
     let f = standard::load_full("shadows");
     for scale in [1.0, 3.16, 31.6] {
@@ -206,7 +206,7 @@ fn contact_sweep_pins_the_leak() {
 }
 
 #[test]
-#[ignore = "exhaustive: cargo test --release --test lit_stability -- --ignored"]
+#[ignore = "exhaustive: cargo test --release --test lab -- --ignored"]
 fn contact_sweep_native() {
     let points = sweeps::contact_sweep(&sweeps::contact_scales());
     assert_eq!(points.len(), 9 * SECONDARY.len());
@@ -256,7 +256,7 @@ fn eye_inside_a_mirror_sphere_sweep() {
 /// 120×90, half decades. Measured: convex 0 at every scale; ε clean up to 10, failing
 /// from 31.6 (8 px; 2201 at 10³, 9020 at 10⁵).
 #[test]
-#[ignore = "exhaustive: cargo test --release --test lit_stability -- --ignored"]
+#[ignore = "exhaustive: cargo test --release --test lab -- --ignored"]
 fn eye_inside_a_mirror_sphere_native() {
     let points = sweeps::mirror_inside_sweep(Size::new(120, 90), &sweeps::lit_scales());
     print("mirror inside 120×90", &points);
@@ -348,7 +348,7 @@ fn standard_feature_scenes_shrunk() {
 }
 
 #[test]
-#[ignore = "exhaustive: cargo test --release --test lit_stability -- --ignored"]
+#[ignore = "exhaustive: cargo test --release --test lab -- --ignored"]
 fn standard_feature_scenes_native() {
     for name in standard::FEATURE_SCENES {
         standard_feature_scene(name, Size::new(240, 240));

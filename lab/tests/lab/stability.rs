@@ -93,7 +93,7 @@ fn distance_sweep_pins_each_sphere_test() {
 /// The same sweep at 256×256 for every method of `Method::ALL`: the stepping adds nothing here
 /// (axis-aligned camera at the origin), so every stepping fails where Direct does.
 #[test]
-#[ignore = "exhaustive: cargo test --release --test stability -- --ignored"]
+#[ignore = "exhaustive: cargo test --release --test lab -- --ignored"]
 fn distance_sweep_exhaustive() {
     let points = distance_sweep(256, &Method::ALL);
     let failures = distance_failures(&points, &Method::ALL);
@@ -741,7 +741,7 @@ fn standard_scene_crowd() {
 
 /// 1920×1080: a few seconds in a debug build, so with the exhaustive tests.
 #[test]
-#[ignore = "exhaustive: cargo test --release --test stability -- --ignored"]
+#[ignore = "exhaustive: cargo test --release --test lab -- --ignored"]
 fn standard_scene_drift() {
     standard_scene("drift");
 }

@@ -1,0 +1,239 @@
+//! Where a region's estimated Cortex-M4 cycles go, by source line: the per-instruction
+//! profile of `cycle_model run --profile` resolved through the firmware's line tables.
+//!
+//! ```text
+//! profile_lines --profile FILE --elf ELF --region PREFIX [--top N]
+//! ```
+//!
+//! `ELF` is the profiled firmware, built with line tables (`bash .ci/cycles --lines`
+//! builds it so, apart from the measured builds: `CARGO_PROFILE_RELEASE_DEBUG=
+//! line-tables-only` adds sections, not code). `PREFIX` picks the profile's regions whose
+//! label starts with it (`shadows`: the default method on `scenes/shadows.toml`); the
+//! label's `pixels N` turns cycles into cycles per pixel. Each executed instruction is
+//! resolved by `llvm-addr2line -i` (Debian's `llvm` package) into the chain of source
+//! lines it was inlined through, innermost first, and its cycles are summed three ways:
+//!
+//! - by the file of its innermost line (the kernel's own, `core`'s iterators, …), the
+//!   `N` largest;
+//! - by its **step**: the innermost line in the library's own `src/` outside
+//!   `src/math/` (vectors, roots), so that a dot product's, an iterator's or a slice's
+//!   code is charged to the kernel's line that runs it — the step of the algorithm a
+//!   cycle belongs to;
+//! - by its innermost line, the `N` largest (default 30).
+//!
+//! Paths are printed relative to the repository (the working directory), `core`'s as
+//! `core/src/…`, a registry crate's as `NAME-VERSION/…`. Line 0 is code the compiler
+//! made without a source line (register spills and reloads, mostly).
+
+use std::collections::HashMap;
+use std::io::Write;
+use std::process::{Command, ExitCode, Stdio};
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match run(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// The value after `--name` in `args`.
+fn option<'a>(args: &'a [String], name: &str) -> Option<&'a str> {
+    let i = args.iter().position(|a| a == name)?;
+    args.get(i + 1).map(String::as_str)
+}
+
+/// One executed instruction of the chosen regions: its address, executions and cycles.
+struct Executed {
+    addr: u32,
+    count: u64,
+    cycles: u64,
+}
+
+fn run(args: &[String]) -> Result<(), String> {
+    let need =
+        |name| option(args, name).ok_or_else(|| format!("missing {name} (usage: see the file's docs)"));
+    let (profile, elf, prefix) = (need("--profile")?, need("--elf")?, need("--region")?);
+    let top: usize = match option(args, "--top") {
+        Some(n) => n.parse().map_err(|_| format!("--top {n}: not a count"))?,
+        None => 30,
+    };
+    let text = std::fs::read_to_string(profile).map_err(|e| format!("{profile}: {e}"))?;
+    let (executed, pixels, labels) = parse_profile(&text, prefix)?;
+    let chains = resolve(elf, &executed)?;
+    let root = std::env::current_dir().map_err(|e| e.to_string())?;
+    let root = format!("{}/", root.display());
+
+    let (mut by_file, mut by_step, mut by_line) = (Sums::default(), Sums::default(), Sums::default());
+    let (mut total, mut instructions) = (0u64, 0u64);
+    for (x, chain) in executed.iter().zip(&chains) {
+        let chain: Vec<String> = chain.iter().map(|loc| shorten(loc, &root)).collect();
+        let inner = chain.first().map_or("?", String::as_str);
+        by_line.add(inner, x);
+        by_file.add(file_of(inner), x);
+        let own = |loc: &&String| loc.starts_with("src/") && !loc.starts_with("src/math/");
+        let step = chain
+            .iter()
+            .find(own)
+            .or_else(|| chain.iter().find(|loc| loc.starts_with("src/")))
+            .map_or(inner, String::as_str);
+        by_step.add(step, x);
+        total += x.cycles;
+        instructions += x.count;
+    }
+    let px = pixels as f64;
+    println!("regions: {}", labels.join("; "));
+    println!(
+        "{:.1} estimated cycles and {:.1} instructions per pixel ({pixels} pixels)",
+        total as f64 / px,
+        instructions as f64 / px
+    );
+    by_file.print("by the file of the innermost line", px, total, top);
+    by_step.print(
+        "by step: the innermost line in the library's src/, src/math/ aside",
+        px,
+        total,
+        top,
+    );
+    by_line.print("by the innermost line", px, total, top);
+    Ok(())
+}
+
+/// The executed instructions of the regions whose label starts with `prefix`, their
+/// pixels (summed over the regions) and labels.
+fn parse_profile(text: &str, prefix: &str) -> Result<(Vec<Executed>, u64, Vec<String>), String> {
+    let mut executed = Vec::new();
+    let mut labels: Vec<String> = Vec::new();
+    let mut pixels = 0;
+    for line in text.lines() {
+        let Some((label, rest)) = line.split_once(" | ") else {
+            continue;
+        };
+        if !label.starts_with(prefix) {
+            continue;
+        }
+        if labels.last().is_none_or(|l| l != label) {
+            let words: Vec<&str> = label.split_whitespace().collect();
+            let n = words
+                .iter()
+                .position(|w| *w == "pixels")
+                .and_then(|i| words.get(i + 1))
+                .and_then(|n| n.parse::<u64>().ok())
+                .ok_or_else(|| format!("region '{label}': no 'pixels N'"))?;
+            pixels += n;
+            labels.push(label.to_string());
+        }
+        let mut words = rest.split_whitespace();
+        let (Some(addr), Some(count), Some(cycles)) = (words.next(), words.next(), words.next()) else {
+            continue;
+        };
+        if addr == "function" {
+            continue; // the per-function summary lines
+        }
+        let bad = || format!("profile line not understood: {line}");
+        executed.push(Executed {
+            addr: u32::from_str_radix(addr, 16).map_err(|_| bad())?,
+            count: count.parse().map_err(|_| bad())?,
+            cycles: cycles.parse().map_err(|_| bad())?,
+        });
+    }
+    if executed.is_empty() || pixels == 0 {
+        return Err(format!("no region of the profile starts with '{prefix}'"));
+    }
+    Ok((executed, pixels, labels))
+}
+
+/// Each address's chain of `file:line`, innermost first, by one run of
+/// `llvm-addr2line -i -a` over them all.
+fn resolve(elf: &str, executed: &[Executed]) -> Result<Vec<Vec<String>>, String> {
+    let mut child = Command::new("llvm-addr2line")
+        .args(["-i", "-a", "-e", elf])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("llvm-addr2line: {e} (Debian: apt-get install llvm)"))?;
+    let input: String = executed.iter().map(|x| format!("0x{:x}\n", x.addr)).collect();
+    // Written from a thread: the tool's output fills its pipe while it reads.
+    let mut stdin = child.stdin.take().ok_or("llvm-addr2line: no stdin")?;
+    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
+    let out = child
+        .wait_with_output()
+        .map_err(|e| format!("llvm-addr2line: {e}"))?;
+    writer
+        .join()
+        .map_err(|_| "llvm-addr2line: the writer panicked".to_string())?
+        .map_err(|e| format!("llvm-addr2line: {e}"))?;
+    if !out.status.success() {
+        return Err(format!("llvm-addr2line failed ({})", out.status));
+    }
+    let text = String::from_utf8_lossy(&out.stdout);
+    let mut chains: Vec<Vec<String>> = Vec::new();
+    for line in text.lines() {
+        if line.starts_with("0x") {
+            chains.push(Vec::new());
+        } else if let Some(chain) = chains.last_mut() {
+            // `file:line`, maybe with ` (discriminator N)`.
+            let loc = line.split(" (").next().unwrap_or(line);
+            chain.push(loc.to_string());
+        }
+    }
+    if chains.len() != executed.len() {
+        return Err(format!(
+            "llvm-addr2line answered {} addresses of {}",
+            chains.len(),
+            executed.len()
+        ));
+    }
+    Ok(chains)
+}
+
+/// A path as this tool prints it: relative to the repository, `core/src/…` for the
+/// standard library, `NAME-VERSION/…` for a registry crate, else as given.
+fn shorten(loc: &str, root: &str) -> String {
+    if let Some(rest) = loc.strip_prefix(root) {
+        return rest.to_string();
+    }
+    if let Some((_, rest)) = loc.split_once("/library/") {
+        return rest.to_string();
+    }
+    if let Some((_, rest)) = loc.split_once("/registry/src/") {
+        // index.crates.io-HASH/NAME-VERSION/…
+        return rest.split_once('/').map_or(rest, |(_, r)| r).to_string();
+    }
+    loc.to_string()
+}
+
+/// `file` of `file:line`.
+fn file_of(loc: &str) -> &str {
+    loc.rsplit_once(':').map_or(loc, |(file, _)| file)
+}
+
+/// Cycles and executions summed by a key.
+#[derive(Default)]
+struct Sums(HashMap<String, (u64, u64)>);
+
+impl Sums {
+    fn add(&mut self, key: &str, x: &Executed) {
+        let e = self.0.entry(key.to_string()).or_insert((0, 0));
+        e.0 += x.cycles;
+        e.1 += x.count;
+    }
+
+    /// The `top` largest, as cycles and instructions per pixel and share of `total`.
+    fn print(&self, title: &str, px: f64, total: u64, top: usize) {
+        let mut rows: Vec<(&String, &(u64, u64))> = self.0.iter().collect();
+        rows.sort_by(|a, b| b.1 .0.cmp(&a.1 .0).then(a.0.cmp(b.0)));
+        println!("\n{title}:\n  cycles/px  instr/px  share  where");
+        for (key, &(cycles, count)) in rows.into_iter().take(top) {
+            println!(
+                "  {:9.1}  {:8.1}  {:4.1} %  {key}",
+                cycles as f64 / px,
+                count as f64 / px,
+                100.0 * cycles as f64 / total.max(1) as f64
+            );
+        }
+    }
+}

@@ -6,10 +6,13 @@
 //! ```
 //!
 //! `ELF` is the profiled firmware, built with line tables (`bash .ci/cycles --lines`
-//! builds it so, apart from the measured builds: `CARGO_PROFILE_RELEASE_DEBUG=
-//! line-tables-only` adds sections, not code). `PREFIX` picks the profile's regions whose
-//! label starts with it (`shadows`: the default method on `scenes/shadows.toml`); the
-//! label's `pixels N` turns cycles into cycles per pixel. Each executed instruction is
+//! and `bash .ci/pico-emu --lines` build it so, apart from the measured builds:
+//! `CARGO_PROFILE_RELEASE_DEBUG=line-tables-only` adds sections, not code). `PREFIX`
+//! picks the profile's regions whose label starts with it (`shadows`: the default method
+//! on `scenes/shadows.toml`); the label's `pixels N` turns cycles into cycles per pixel,
+//! or its `frames N` (the Pico's profile from `lab/emulator/src/run.mjs --pc-part P`)
+//! into cycles per frame, with milliseconds at the label's `clk HZ`. Each executed
+//! instruction is
 //! resolved by `llvm-addr2line -i` (Debian's `llvm` package) into the chain of source
 //! lines it was inlined through, innermost first, and its cycles are summed three ways:
 //!
@@ -47,6 +50,7 @@ fn option<'a>(args: &'a [String], name: &str) -> Option<&'a str> {
 }
 
 /// One executed instruction of the chosen regions: its address, executions and cycles.
+#[derive(Debug)]
 struct Executed {
     addr: u32,
     count: u64,
@@ -62,7 +66,7 @@ fn run(args: &[String]) -> Result<(), String> {
         None => 30,
     };
     let text = std::fs::read_to_string(profile).map_err(|e| format!("{profile}: {e}"))?;
-    let (executed, pixels, labels) = parse_profile(&text, prefix)?;
+    let (executed, per, labels) = parse_profile(&text, prefix)?;
     let chains = resolve(elf, &executed)?;
     let root = std::env::current_dir().map_err(|e| e.to_string())?;
     let root = format!("{}/", root.display());
@@ -84,30 +88,49 @@ fn run(args: &[String]) -> Result<(), String> {
         total += x.cycles;
         instructions += x.count;
     }
-    let px = pixels as f64;
     println!("regions: {}", labels.join("; "));
+    let n = per.n as f64;
+    let ms = per.clk.map_or(String::new(), |hz| {
+        format!(" ({:.2} ms at {} MHz)", total as f64 / n / hz * 1e3, hz / 1e6)
+    });
     println!(
-        "{:.1} estimated cycles and {:.1} instructions per pixel ({pixels} pixels)",
-        total as f64 / px,
-        instructions as f64 / px
+        "{:.1} cycles{ms} and {:.1} instructions per {} ({} {}s)",
+        total as f64 / n,
+        instructions as f64 / n,
+        per.unit,
+        per.n,
+        per.unit
     );
-    by_file.print("by the file of the innermost line", px, total, top);
+    by_file.print("by the file of the innermost line", &per, total, top);
     by_step.print(
         "by step: the innermost line in the library's src/, src/math/ aside",
-        px,
+        &per,
         total,
         top,
     );
-    by_line.print("by the innermost line", px, total, top);
+    by_line.print("by the innermost line", &per, total, top);
     Ok(())
 }
 
-/// The executed instructions of the regions whose label starts with `prefix`, their
-/// pixels (summed over the regions) and labels.
-fn parse_profile(text: &str, prefix: &str) -> Result<(Vec<Executed>, u64, Vec<String>), String> {
+/// What the sums are divided by: the regions' pixels (`pixels N` in their labels, summed)
+/// or the later frames of the Pico's profile (`frames N`), and the clock (`clk HZ`).
+#[derive(Debug)]
+struct Per {
+    unit: &'static str,
+    n: u64,
+    clk: Option<f64>,
+}
+
+/// The executed instructions of the regions whose label starts with `prefix`, the
+/// divisor of their sums ([`Per`]) and the labels.
+fn parse_profile(text: &str, prefix: &str) -> Result<(Vec<Executed>, Per, Vec<String>), String> {
     let mut executed = Vec::new();
     let mut labels: Vec<String> = Vec::new();
-    let mut pixels = 0;
+    let mut per = Per {
+        unit: "pixel",
+        n: 0,
+        clk: None,
+    };
     for line in text.lines() {
         let Some((label, rest)) = line.split_once(" | ") else {
             continue;
@@ -117,13 +140,24 @@ fn parse_profile(text: &str, prefix: &str) -> Result<(Vec<Executed>, u64, Vec<St
         }
         if labels.last().is_none_or(|l| l != label) {
             let words: Vec<&str> = label.split_whitespace().collect();
-            let n = words
-                .iter()
-                .position(|w| *w == "pixels")
-                .and_then(|i| words.get(i + 1))
-                .and_then(|n| n.parse::<u64>().ok())
-                .ok_or_else(|| format!("region '{label}': no 'pixels N'"))?;
-            pixels += n;
+            let after = |key: &str| {
+                let i = words.iter().position(|w| *w == key)?;
+                words.get(i + 1)?.parse::<u64>().ok()
+            };
+            let (unit, n) = match (after("pixels"), after("frames")) {
+                (Some(n), None) => ("pixel", n),
+                (None, Some(n)) => ("frame", n),
+                _ => return Err(format!("region '{label}': no 'pixels N' or 'frames N'")),
+            };
+            if per.n > 0 && per.unit != unit {
+                return Err(format!(
+                    "region '{label}': counts {unit}s, the ones before {}s",
+                    per.unit
+                ));
+            }
+            per.unit = unit;
+            per.n += n;
+            per.clk = per.clk.or(after("clk").map(|hz| hz as f64));
             labels.push(label.to_string());
         }
         let mut words = rest.split_whitespace();
@@ -140,10 +174,10 @@ fn parse_profile(text: &str, prefix: &str) -> Result<(Vec<Executed>, u64, Vec<St
             cycles: cycles.parse().map_err(|_| bad())?,
         });
     }
-    if executed.is_empty() || pixels == 0 {
+    if executed.is_empty() || per.n == 0 {
         return Err(format!("no region of the profile starts with '{prefix}'"));
     }
-    Ok((executed, pixels, labels))
+    Ok((executed, per, labels))
 }
 
 /// Each address's chain of `file:line`, innermost first, by one run of
@@ -222,18 +256,73 @@ impl Sums {
         e.1 += x.count;
     }
 
-    /// The `top` largest, as cycles and instructions per pixel and share of `total`.
-    fn print(&self, title: &str, px: f64, total: u64, top: usize) {
+    /// The `top` largest, as cycles and instructions per pixel or frame (and
+    /// milliseconds per frame at the clock) and share of `total`.
+    fn print(&self, title: &str, per: &Per, total: u64, top: usize) {
         let mut rows: Vec<(&String, &(u64, u64))> = self.0.iter().collect();
         rows.sort_by(|a, b| b.1 .0.cmp(&a.1 .0).then(a.0.cmp(b.0)));
-        println!("\n{title}:\n  cycles/px  instr/px  share  where");
+        let n = per.n as f64;
+        let ms_head = if per.clk.is_some() { "      ms" } else { "" };
+        let unit = if per.unit == "pixel" { "px" } else { "frame" };
+        println!("\n{title}:\n  cycles/{unit}  instr/{unit}{ms_head}  share  where");
         for (key, &(cycles, count)) in rows.into_iter().take(top) {
+            let ms = per.clk.map_or(String::new(), |hz| {
+                format!("  {:6.2}", cycles as f64 / n / hz * 1e3)
+            });
             println!(
-                "  {:9.1}  {:8.1}  {:4.1} %  {key}",
-                cycles as f64 / px,
-                count as f64 / px,
+                "  {:9.1}  {:8.1}{ms}  {:4.1} %  {key}",
+                cycles as f64 / n,
+                count as f64 / n,
                 100.0 * cycles as f64 / total.max(1) as f64
             );
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_profile;
+
+    /// The cycle model's regions: per pixel, summed over the regions the prefix picks,
+    /// the per-function summary lines skipped.
+    #[test]
+    fn cycle_model_regions_divide_by_their_pixels() {
+        let text = "shadows a pixels 100 | 80001e0 240 1440 push {r4} <f>\n\
+                    shadows a pixels 100 | function 1440 <f>\n\
+                    shadows b pixels 50 | 80001e2 10 10 add r7 <f>\n\
+                    mirrors pixels 7 | 80001e4 1 1 nop <g>\n";
+        let (executed, per, labels) = parse_profile(text, "shadows").unwrap();
+        assert_eq!(executed.len(), 2);
+        assert_eq!(
+            (executed[0].addr, executed[0].count, executed[0].cycles),
+            (0x0800_01e0, 240, 1440)
+        );
+        assert_eq!((per.unit, per.n, per.clk), ("pixel", 150, None));
+        assert_eq!(labels, ["shadows a pixels 100", "shadows b pixels 50"]);
+    }
+
+    /// The Pico's profile (`run.mjs --pc-part`): per frame, with its clock.
+    #[test]
+    fn the_picos_profile_divides_by_its_frames() {
+        let text = "simple part 1 frames 11 clk 125000000 | 10000584 76131 152262\n";
+        let (executed, per, _) = parse_profile(text, "simple").unwrap();
+        assert_eq!(
+            (executed[0].addr, executed[0].count, executed[0].cycles),
+            (0x1000_0584, 76131, 152262)
+        );
+        assert_eq!((per.unit, per.n, per.clk), ("frame", 11, Some(125e6)));
+    }
+
+    /// A label without its divisor, or regions that count different things, are refused.
+    #[test]
+    fn a_label_without_a_count_or_mixed_units_is_refused() {
+        assert!(parse_profile("x part 1 | 10 1 1\n", "x")
+            .unwrap_err()
+            .contains("no 'pixels N'"));
+        let mixed = "x pixels 5 | 10 1 1\nx frames 2 | 12 1 1\n";
+        assert!(parse_profile(mixed, "x").unwrap_err().contains("counts frames"));
+        assert!(parse_profile("y pixels 5 | 10 1 1\n", "x")
+            .unwrap_err()
+            .contains("no region"));
     }
 }

@@ -84,9 +84,10 @@ export class Pico {
     this.buckets = 8;
     this.bucket = 0;
     this.profile = new Float64Array(this.buckets * (this.fns.length + 1));
-    /** Cycles by flash halfword for one bucket (`pcBucket`), when `pcProfile()` asked:
-     * where inside a function the time goes. */
+    /** Cycles and executions by flash halfword for one bucket (`pcBucket`), when
+     * `pcProfile()` asked: where inside a function the time goes. */
     this.pcCycles = null;
+    this.pcCount = null;
     this.pcBucket = -1;
 
     /** Called at each read of the timer's low word: (cycles, microseconds read). */
@@ -168,10 +169,12 @@ export class Pico {
     return i2c;
   }
 
-  /** Counts the cycles of bucket `bucket` by instruction address too (`pcCycles`). */
+  /** Counts the cycles and executions of bucket `bucket` by instruction address too
+   * (`pcCycles`, `pcCount`). */
   pcProfile(bucket) {
     this.pcBucket = bucket;
     this.pcCycles = new Float64Array(this.fnAt.length);
+    this.pcCount = new Float64Array(this.fnAt.length);
     /** Calls in that bucket: "callee caller" (indices into `fns`) → count. */
     this.calls = new Map();
   }
@@ -201,6 +204,7 @@ export class Pico {
       profile[this.bucket * stride + fn] += cycles;
       if (this.bucket === this.pcBucket && fn !== other) {
         this.pcCycles[(pc - FLASH) >> 1] += cycles;
+        this.pcCount[(pc - FLASH) >> 1]++;
         // A call: the function's first instruction, the caller from the link register.
         if (pc === this.fns[fn].start) {
           const lr = (core.LR & ~1) - 2;

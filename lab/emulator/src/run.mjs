@@ -8,7 +8,10 @@
 // frame reached the display), the microseconds the firmware read from the timer, the
 // pixels or bytes sent; the cycles by function (the profile); rp2040js's warnings.
 // DIR/BOARD-K-*.raw: the first M frames' pictures (see `capture` below).
-// DIR/BOARD-pc.txt (with --pc-part): part P of the later frames by instruction address.
+// DIR/BOARD-pc.txt (with --pc-part): part P of the later frames by instruction address,
+// per frame; DIR/BOARD-pc.profile: the same in the format of `cycle_model --profile`
+// (a label holding `frames N` and `clk HZ`, then address, executions and cycles summed over
+// the N later frames), which `lab/examples/profile_lines.rs` resolves into source lines.
 //
 // The main loop of both examples reads the timer at the start of a frame and after it
 // (`timer.get_counter()`); the display's start-up before it reads the timer too (its
@@ -227,6 +230,11 @@ if (pico.pcCycles) {
     text.push(`calls ${perFrame(n)} ${name(callee)} <- ${name(caller)}`);
   }
   writeFileSync(join(args.out, `${args.board}-pc.txt`), `${text.join('\n')}\n`);
+  const label = `${args.board} part ${args['pc-part']} frames ${Math.max(1, frames - 1)} clk ${pico.clkSys}`;
+  const profile = rows
+    .sort((a, b) => a[1] - b[1])
+    .map(([c, at]) => `${label} | ${at.toString(16)} ${pico.pcCount[(at - 0x10000000) >> 1]} ${c}`);
+  writeFileSync(join(args.out, `${args.board}-pc.profile`), `${profile.join('\n')}\n`);
 }
 const ms = (c) => ((c / pico.clkSys) * 1e3).toFixed(1);
 console.log(

@@ -1,5 +1,7 @@
-//! Where a region's estimated Cortex-M4 cycles go, by source line: the per-instruction
-//! profile of `cycle_model run --profile` resolved through the firmware's line tables.
+//! Where a firmware's cycles go, by source line: a per-instruction profile — the
+//! Cortex-M4 cycle model's estimates (`cycle_model run --profile`) or the Cortex-M0+
+//! cycles rp2040js counts (`lab/emulator/src/run.mjs --pc-part`) — resolved through the
+//! firmware's line tables.
 //!
 //! ```text
 //! profile_lines --profile FILE --elf ELF --region PREFIX [--top N]
@@ -14,14 +16,18 @@
 //! into cycles per frame, with milliseconds at the label's `clk HZ`. Each executed
 //! instruction is
 //! resolved by `llvm-addr2line -i` (Debian's `llvm` package) into the chain of source
-//! lines it was inlined through, innermost first, and its cycles are summed three ways:
+//! lines it was inlined through, innermost first, and its cycles are summed four ways:
 //!
 //! - by the file of its innermost line (the kernel's own, `core`'s iterators, …), the
 //!   `N` largest;
 //! - by its **step**: the innermost line in the library's own `src/` outside
 //!   `src/math/` (vectors, roots), so that a dot product's, an iterator's or a slice's
 //!   code is charged to the kernel's line that runs it — the step of the algorithm a
-//!   cycle belongs to;
+//!   cycle belongs to; where no line of the library is in the chain, the innermost line
+//!   outside `core`, so that `core`'s code inlined into a driver or a HAL is charged to
+//!   it;
+//! - by the crate of its step (the library, a driver, the HAL, compiler-builtins' calls,
+//!   …), every one;
 //! - by its innermost line, the `N` largest (default 30).
 //!
 //! Paths are printed relative to the repository (the working directory), `core`'s as
@@ -72,6 +78,7 @@ fn run(args: &[String]) -> Result<(), String> {
     let root = format!("{}/", root.display());
 
     let (mut by_file, mut by_step, mut by_line) = (Sums::default(), Sums::default(), Sums::default());
+    let mut by_crate = Sums::default();
     let (mut total, mut instructions) = (0u64, 0u64);
     for (x, chain) in executed.iter().zip(&chains) {
         let chain: Vec<String> = chain.iter().map(|loc| shorten(loc, &root)).collect();
@@ -83,8 +90,10 @@ fn run(args: &[String]) -> Result<(), String> {
             .iter()
             .find(own)
             .or_else(|| chain.iter().find(|loc| loc.starts_with("src/")))
+            .or_else(|| chain.iter().find(|loc| !loc.starts_with("core/")))
             .map_or(inner, String::as_str);
         by_step.add(step, x);
+        by_crate.add(crate_of(step), x);
         total += x.cycles;
         instructions += x.count;
     }
@@ -108,6 +117,7 @@ fn run(args: &[String]) -> Result<(), String> {
         total,
         top,
     );
+    by_crate.print("by the crate of the step", &per, total, usize::MAX);
     by_line.print("by the innermost line", &per, total, top);
     Ok(())
 }
@@ -155,9 +165,17 @@ fn parse_profile(text: &str, prefix: &str) -> Result<(Vec<Executed>, Per, Vec<St
                     per.unit
                 ));
             }
+            // Pixels add up over regions; frames are the same frames, whatever the part.
+            if unit == "frame" && per.n > 0 && per.n != n {
+                return Err(format!("region '{label}': {n} frames, the ones before {}", per.n));
+            }
             per.unit = unit;
-            per.n += n;
-            per.clk = per.clk.or(after("clk").map(|hz| hz as f64));
+            per.n = if unit == "frame" { n } else { per.n + n };
+            let clk = words
+                .iter()
+                .position(|w| *w == "clk")
+                .and_then(|i| words.get(i + 1));
+            per.clk = per.clk.or(clk.and_then(|hz| hz.parse::<f64>().ok()));
             labels.push(label.to_string());
         }
         let mut words = rest.split_whitespace();
@@ -240,6 +258,17 @@ fn shorten(loc: &str, root: &str) -> String {
     loc.to_string()
 }
 
+/// The crate of a path as [`shorten`] prints it: `src/…` the library, `core/…` the
+/// standard library, else its first component (`NAME-VERSION`, `compiler-builtins`,
+/// `lab`, `boards`).
+fn crate_of(loc: &str) -> &str {
+    if loc.starts_with("src/") {
+        "the library (src/)"
+    } else {
+        loc.split_once('/').map_or(loc, |(first, _)| first)
+    }
+}
+
 /// `file` of `file:line`.
 fn file_of(loc: &str) -> &str {
     loc.rsplit_once(':').map_or(loc, |(file, _)| file)
@@ -281,7 +310,21 @@ impl Sums {
 
 #[cfg(test)]
 mod tests {
-    use super::parse_profile;
+    use super::{crate_of, parse_profile};
+
+    /// A step's crate: the library, the standard library, a registry crate or a folder
+    /// of the repository.
+    #[test]
+    fn steps_belong_to_their_crates() {
+        assert_eq!(crate_of("src/integer/row.rs:253"), "the library (src/)");
+        assert_eq!(crate_of("core/src/slice/mod.rs:2193"), "core");
+        assert_eq!(
+            crate_of("mipidsi-0.10.0/src/interface/spi.rs:77"),
+            "mipidsi-0.10.0"
+        );
+        assert_eq!(crate_of("boards/rp2040/src/bin/simple/dma_spi.rs:90"), "boards");
+        assert_eq!(crate_of("??:0"), "??:0");
+    }
 
     /// The cycle model's regions: per pixel, summed over the regions the prefix picks,
     /// the per-function summary lines skipped.
@@ -311,6 +354,13 @@ mod tests {
             (0x1000_0584, 76131, 152262)
         );
         assert_eq!((per.unit, per.n, per.clk), ("frame", 11, Some(125e6)));
+        // Two parts of the same frames: divided by the frames once.
+        let parts =
+            "simple part 0 frames 11 clk 1.25e8 | 10 1 1\nsimple part 1 frames 11 clk 1.25e8 | 12 1 1\n";
+        let (_, per, _) = parse_profile(parts, "simple").unwrap();
+        assert_eq!((per.n, per.clk), (11, Some(125e6)));
+        let unequal = "simple part 0 frames 11 | 10 1 1\nsimple part 1 frames 5 | 12 1 1\n";
+        assert!(parse_profile(unequal, "simple").unwrap_err().contains("5 frames"));
     }
 
     /// A label without its divisor, or regions that count different things, are refused.

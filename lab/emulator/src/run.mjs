@@ -34,7 +34,8 @@ const { values: args } = parseArgs({
     pictures: { type: 'string', default: '12' },
     out: { type: 'string' },
     // Where the later frames' time goes by instruction: BOARD-pc.txt, the hottest
-    // addresses of one part (0: before the first window, 1: the windows, 2: after).
+    // addresses of one part (0: before the first window, 1: the windows, 2: after), and
+    // BOARD-pc.profile, the same for lab/examples/profile_lines.rs.
     'pc-part': { type: 'string' },
   },
 });

@@ -98,17 +98,16 @@ fn run(args: &[String]) -> Result<(), String> {
         instructions += x.count;
     }
     println!("regions: {}", labels.join("; "));
-    let n = per.n as f64;
-    let ms = per.clk.map_or(String::new(), |hz| {
-        format!(" ({:.2} ms at {} MHz)", total as f64 / n / hz * 1e3, hz / 1e6)
-    });
+    let ms = match (per.ms(total), per.clk) {
+        (Some(ms), Some(hz)) => format!(" ({ms:.2} ms at {} MHz)", hz / 1e6),
+        _ => String::new(),
+    };
+    let unit = per.unit.name();
     println!(
-        "{:.1} cycles{ms} and {:.1} instructions per {} ({} {}s)",
-        total as f64 / n,
-        instructions as f64 / n,
-        per.unit,
-        per.n,
-        per.unit
+        "{:.1} cycles{ms} and {:.1} instructions per {unit} ({} {unit}s)",
+        per.each(total),
+        per.each(instructions),
+        per.n
     );
     by_file.print("by the file of the innermost line", &per, total, top);
     by_step.print(
@@ -126,9 +125,37 @@ fn run(args: &[String]) -> Result<(), String> {
 /// or the later frames of the Pico's profile (`frames N`), and the clock (`clk HZ`).
 #[derive(Debug)]
 struct Per {
-    unit: &'static str,
+    unit: Unit,
     n: u64,
     clk: Option<f64>,
+}
+
+/// What a profile's label counts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Unit {
+    Pixel,
+    Frame,
+}
+
+impl Unit {
+    fn name(self) -> &'static str {
+        match self {
+            Unit::Pixel => "pixel",
+            Unit::Frame => "frame",
+        }
+    }
+}
+
+impl Per {
+    /// `x` per pixel or per frame.
+    fn each(&self, x: u64) -> f64 {
+        x as f64 / self.n as f64
+    }
+
+    /// `cycles` per frame in milliseconds at the clock, if the label gave one.
+    fn ms(&self, cycles: u64) -> Option<f64> {
+        self.clk.map(|hz| self.each(cycles) / hz * 1e3)
+    }
 }
 
 /// The executed instructions of the regions whose label starts with `prefix`, the
@@ -137,7 +164,7 @@ fn parse_profile(text: &str, prefix: &str) -> Result<(Vec<Executed>, Per, Vec<St
     let mut executed = Vec::new();
     let mut labels: Vec<String> = Vec::new();
     let mut per = Per {
-        unit: "pixel",
+        unit: Unit::Pixel,
         n: 0,
         clk: None,
     };
@@ -150,32 +177,31 @@ fn parse_profile(text: &str, prefix: &str) -> Result<(Vec<Executed>, Per, Vec<St
         }
         if labels.last().is_none_or(|l| l != label) {
             let words: Vec<&str> = label.split_whitespace().collect();
+            // The word after `key`.
             let after = |key: &str| {
                 let i = words.iter().position(|w| *w == key)?;
-                words.get(i + 1)?.parse::<u64>().ok()
+                words.get(i + 1).copied()
             };
-            let (unit, n) = match (after("pixels"), after("frames")) {
-                (Some(n), None) => ("pixel", n),
-                (None, Some(n)) => ("frame", n),
+            let count = |key| after(key).and_then(|n| n.parse::<u64>().ok());
+            let (unit, n) = match (count("pixels"), count("frames")) {
+                (Some(n), None) => (Unit::Pixel, n),
+                (None, Some(n)) => (Unit::Frame, n),
                 _ => return Err(format!("region '{label}': no 'pixels N' or 'frames N'")),
             };
             if per.n > 0 && per.unit != unit {
                 return Err(format!(
-                    "region '{label}': counts {unit}s, the ones before {}s",
-                    per.unit
+                    "region '{label}': counts {}s, the ones before {}s",
+                    unit.name(),
+                    per.unit.name()
                 ));
             }
             // Pixels add up over regions; frames are the same frames, whatever the part.
-            if unit == "frame" && per.n > 0 && per.n != n {
+            if unit == Unit::Frame && per.n > 0 && per.n != n {
                 return Err(format!("region '{label}': {n} frames, the ones before {}", per.n));
             }
             per.unit = unit;
-            per.n = if unit == "frame" { n } else { per.n + n };
-            let clk = words
-                .iter()
-                .position(|w| *w == "clk")
-                .and_then(|i| words.get(i + 1));
-            per.clk = per.clk.or(clk.and_then(|hz| hz.parse::<f64>().ok()));
+            per.n = if unit == Unit::Frame { n } else { per.n + n };
+            per.clk = per.clk.or(after("clk").and_then(|hz| hz.parse::<f64>().ok()));
             labels.push(label.to_string());
         }
         let mut words = rest.split_whitespace();
@@ -290,18 +316,18 @@ impl Sums {
     fn print(&self, title: &str, per: &Per, total: u64, top: usize) {
         let mut rows: Vec<(&String, &(u64, u64))> = self.0.iter().collect();
         rows.sort_by(|a, b| b.1 .0.cmp(&a.1 .0).then(a.0.cmp(b.0)));
-        let n = per.n as f64;
         let ms_head = if per.clk.is_some() { "      ms" } else { "" };
-        let unit = if per.unit == "pixel" { "px" } else { "frame" };
+        let unit = match per.unit {
+            Unit::Pixel => "px",
+            Unit::Frame => "frame",
+        };
         println!("\n{title}:\n  cycles/{unit}  instr/{unit}{ms_head}  share  where");
         for (key, &(cycles, count)) in rows.into_iter().take(top) {
-            let ms = per.clk.map_or(String::new(), |hz| {
-                format!("  {:6.2}", cycles as f64 / n / hz * 1e3)
-            });
+            let ms = per.ms(cycles).map_or(String::new(), |ms| format!("  {ms:6.2}"));
             println!(
                 "  {:9.1}  {:8.1}{ms}  {:4.1} %  {key}",
-                cycles as f64 / n,
-                count as f64 / n,
+                per.each(cycles),
+                per.each(count),
                 100.0 * cycles as f64 / total.max(1) as f64
             );
         }
@@ -310,7 +336,7 @@ impl Sums {
 
 #[cfg(test)]
 mod tests {
-    use super::{crate_of, parse_profile};
+    use super::{crate_of, parse_profile, Unit};
 
     /// A step's crate: the library, the standard library, a registry crate or a folder
     /// of the repository.
@@ -340,7 +366,7 @@ mod tests {
             (executed[0].addr, executed[0].count, executed[0].cycles),
             (0x0800_01e0, 240, 1440)
         );
-        assert_eq!((per.unit, per.n, per.clk), ("pixel", 150, None));
+        assert_eq!((per.unit, per.n, per.clk), (Unit::Pixel, 150, None));
         assert_eq!(labels, ["shadows a pixels 100", "shadows b pixels 50"]);
     }
 
@@ -353,7 +379,7 @@ mod tests {
             (executed[0].addr, executed[0].count, executed[0].cycles),
             (0x1000_0584, 76131, 152262)
         );
-        assert_eq!((per.unit, per.n, per.clk), ("frame", 11, Some(125e6)));
+        assert_eq!((per.unit, per.n, per.clk), (Unit::Frame, 11, Some(125e6)));
         // Two parts of the same frames: divided by the frames once.
         let parts =
             "simple part 0 frames 11 clk 1.25e8 | 10 1 1\nsimple part 1 frames 11 clk 1.25e8 | 12 1 1\n";

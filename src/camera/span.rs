@@ -177,7 +177,13 @@ impl Silhouette {
     ///
     /// [`Self::ALL`] whenever culling cannot be proven safe.
     pub(crate) fn new(l: Vec3, radius: f32, camera: &Camera, margin: Margin, step_err: f32) -> Self {
-        let Some(ellipse) = ellipse::<false>(l, radius, camera, margin, step_err) else {
+        Self::new_in(l, radius, &ImageBasis::of(camera), margin, step_err)
+    }
+
+    /// [`Self::new`] with the camera's part of the ellipse's coefficients worked out
+    /// once (`basis`, [`ImageBasis::of`]) for every sphere of a frame.
+    pub(crate) fn new_in(l: Vec3, radius: f32, basis: &ImageBasis, margin: Margin, step_err: f32) -> Self {
+        let Some(ellipse) = ellipse::<false>(l, radius, basis, margin, step_err) else {
             return Silhouette::ALL;
         };
         ellipse
@@ -196,7 +202,7 @@ impl Silhouette {
         margin: Margin,
         step_err: f32,
     ) -> Option<Self> {
-        ellipse::<true>(l, radius, camera, margin, step_err)
+        ellipse::<true>(l, radius, &ImageBasis::of(camera), margin, step_err)
     }
 
     /// The pixels whose ray meets a plane inside a disc of it (where a shadow can be
@@ -231,8 +237,6 @@ impl Silhouette {
         camera: &Camera,
         step_err: f32,
     ) -> Self {
-        let v64 = |v: Vec3| [f64::from(v.x), f64::from(v.y), f64::from(v.z)];
-        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
         let (f, du, dv, w) = (
             v64(camera.first_direction()),
             v64(camera.pixel_step()),
@@ -502,6 +506,62 @@ fn enlarged(r: f64, l2: f64, l_len: f64, margin: Margin, step_err: f64) -> f64 {
     r_eff + 2.0 * step_err * (1.0 + 1e-3) * l_len
 }
 
+/// The camera's part of every silhouette's ellipse: the image's vectors and their dot
+/// products in `f64`, which do not depend on the sphere.
+///
+/// Worked out once per frame, not once per sphere: in software `f64` (a chip without a
+/// double-precision unit) they are 18 of a silhouette's products. The same operations
+/// in the same order as where each is used, so every ellipse is the same to the bit.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ImageBasis {
+    /// The direction to the upper-left pixel centre, `F`.
+    f: Vec3,
+    /// One pixel to the right, `du`.
+    du: Vec3,
+    /// One scanline down, `dv`.
+    dv: Vec3,
+    /// The view direction, `w`.
+    w: Vec3,
+    /// `du·du`, `du·dv`, `dv·dv`, `F·du`, `F·dv`, `F·F`.
+    dots: [f64; 6],
+}
+
+impl ImageBasis {
+    /// The camera's vectors and their dot products.
+    pub(crate) fn of(camera: &Camera) -> Self {
+        let (f, du, dv, w) = (
+            camera.first_direction(),
+            camera.pixel_step(),
+            camera.scanline_step(),
+            camera.w(),
+        );
+        Self {
+            f,
+            du,
+            dv,
+            w,
+            dots: [
+                du.dot_f64(du),
+                du.dot_f64(dv),
+                dv.dot_f64(dv),
+                f.dot_f64(du),
+                f.dot_f64(dv),
+                f.dot_f64(f),
+            ],
+        }
+    }
+}
+
+/// A vector in `f64` (exactly).
+fn v64(v: Vec3) -> [f64; 3] {
+    [f64::from(v.x), f64::from(v.y), f64::from(v.z)]
+}
+
+/// `a·b` in `f64`, summed left to right.
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
 /// The enlarged silhouette (`INNER`: shrunk) as an ellipse, or `None` when it is not a
 /// bounded ellipse.
 ///
@@ -509,21 +569,14 @@ fn enlarged(r: f64, l2: f64, l_len: f64, margin: Margin, step_err: f64) -> f64 {
 fn ellipse<const INNER: bool>(
     l: Vec3,
     radius: f32,
-    camera: &Camera,
+    basis: &ImageBasis,
     margin: Margin,
     step_err: f32,
 ) -> Option<Silhouette> {
-    let v64 = |v: Vec3| [f64::from(v.x), f64::from(v.y), f64::from(v.z)];
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let (lv, f, du, dv, w) = (
-        v64(l),
-        v64(camera.first_direction()),
-        v64(camera.pixel_step()),
-        v64(camera.scanline_step()),
-        v64(camera.w()),
-    );
+    let ImageBasis { f, du, dv, w, dots } = *basis;
+    let [du_du, du_dv, dv_dv, f_du, f_dv, f_f] = dots;
     let r = f64::from(radius);
-    let l2 = dot(lv, lv);
+    let l2 = l.dot_f64(l);
     let l_len = libm::sqrt(l2);
     let step_err = f64::from(step_err);
     // A direction error of 2E or more is not small: no culling.
@@ -547,20 +600,20 @@ fn ellipse<const INNER: bool>(
     };
     // A bounded ellipse needs the enlarged sphere strictly in front of the plane through
     // the eye parallel to the image (which also puts the eye outside it).
-    if !(dot(lv, w) > r_tot * (1.0 + TWO_M10)) {
+    if !(l.dot_f64(w) > r_tot * (1.0 + TWO_M10)) {
         return None;
     }
     // Hit condition of the enlarged sphere for the ideal ray d = F + x·du + y·dv:
     // (L·d)² ≥ c'·(d·d) with c' = |L|² − r_tot², a quadratic form in (x, y):
     // A x² + 2B xy + C y² + 2D x + 2E y + G ≥ 0.
     let cp = l2 - r_tot * r_tot;
-    let (lf, lu, lvv) = (dot(lv, f), dot(lv, du), dot(lv, dv));
-    let a = lu * lu - cp * dot(du, du);
-    let b = lu * lvv - cp * dot(du, dv);
-    let c = lvv * lvv - cp * dot(dv, dv);
-    let d = lf * lu - cp * dot(f, du);
-    let e = lf * lvv - cp * dot(f, dv);
-    let g = lf * lf - cp * dot(f, f);
+    let (lf, lu, lvv) = (l.dot_f64(f), l.dot_f64(du), l.dot_f64(dv));
+    let a = lu * lu - cp * du_du;
+    let b = lu * lvv - cp * du_dv;
+    let c = lvv * lvv - cp * dv_dv;
+    let d = lf * lu - cp * f_du;
+    let e = lf * lvv - cp * f_dv;
+    let g = lf * lf - cp * f_f;
     conic([a, b, c, d, e, g])
 }
 

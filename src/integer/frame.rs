@@ -34,7 +34,7 @@ use embedded_graphics::primitives::Rectangle;
 use heapless::{Vec, VecView};
 
 use crate::camera::int_cut::IntCut;
-use crate::camera::span::{Margin, Silhouette};
+use crate::camera::span::{ImageBasis, Margin, Silhouette};
 use crate::camera::Camera;
 use crate::math::vec3::Vec3;
 use crate::math::EDGE_TOLERANCE;
@@ -212,24 +212,32 @@ pub(crate) fn cuts(
     pick: impl Fn(usize) -> bool,
     mut f: impl FnMut((u32, u32), IntCut),
 ) {
+    let basis = ImageBasis::of(camera);
     for (index, s) in scene.iter().enumerate() {
         if pick(index) {
-            let (rows, cut) = sphere_cut(s, camera, options, true);
+            let (rows, cut) = sphere_cut(s, camera, &basis, options, true);
             f(rows, cut);
         }
     }
 }
 
 /// A sphere's rows and cut: its silhouette where it is `culled` and culling is on
-/// ([`Silhouette::ALL`] otherwise), enlarged to cover the quantisation's 1/16 pixel.
-fn sphere_cut(s: &Sphere, camera: &Camera, options: Options, culled: bool) -> ((u32, u32), IntCut) {
+/// ([`Silhouette::ALL`] otherwise), enlarged to cover the quantisation's 1/16 pixel;
+/// `basis` is the camera's part of every silhouette, worked out once per frame.
+fn sphere_cut(
+    s: &Sphere,
+    camera: &Camera,
+    basis: &ImageBasis,
+    options: Options,
+    culled: bool,
+) -> ((u32, u32), IntCut) {
     let silhouette = if options.span_culling && culled {
         // A direction error of pw/16 enlarges the f32 silhouette by ≥ 1/8 pixel: it
         // covers the integer picture's 1/16.
-        Silhouette::new(
+        Silhouette::new_in(
             s.center - camera.eye(),
             s.radius,
-            camera,
+            basis,
             Margin::Linear,
             camera.pixel_width() / 16.0,
         )
@@ -365,9 +373,7 @@ fn plan(
     let px_per_rad = (fz + r_img * r_img / fz) / 2.0;
     let (u, v, w) = (camera.u(), camera.v(), camera.w());
     let eye = camera.eye();
-    let dot = |a: Vec3, b: Vec3| {
-        f64::from(a.x) * f64::from(b.x) + f64::from(a.y) * f64::from(b.y) + f64::from(a.z) * f64::from(b.z)
-    };
+    let dot = Vec3::dot_f64;
     // λ: the finest unit that keeps every |ℓ| + ρ ≤ 2²⁵.
     let mut l_max = 0.0f64;
     for s in scene {
@@ -385,6 +391,7 @@ fn plan(
     };
     let lambda = libm::ldexp(1.0, e);
     spheres.clear();
+    let basis = ImageBasis::of(camera);
     let s_col = libm::ldexp(2.0, k) as i64; // the column step s = 2ᵏ⁺¹
     for (index, s) in scene.iter().enumerate() {
         let lv = s.center - eye;
@@ -435,7 +442,7 @@ fn plan(
             return None;
         }
         let a2 = lxi * lxi - c;
-        let (rows, cut) = sphere_cut(s, camera, options, cull(index));
+        let (rows, cut) = sphere_cut(s, camera, &basis, options, cull(index));
         let _ = spheres.push(IntSphere {
             index,
             lx: lx as i32,

@@ -43,6 +43,17 @@ impl Vec3 {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
 
+    /// Dot product in `f64`: each product exact ([`mul_f32_exact`]), summed left to
+    /// right — the bits of `f64::from(x)·f64::from(o.x) + …`, cheaper where `f64` is
+    /// software.
+    ///
+    /// [`mul_f32_exact`]: crate::math::wide::mul_f32_exact
+    #[inline(always)]
+    pub(crate) fn dot_f64(self, o: Vec3) -> f64 {
+        use crate::math::wide::mul_f32_exact;
+        mul_f32_exact(self.x, o.x) + mul_f32_exact(self.y, o.y) + mul_f32_exact(self.z, o.z)
+    }
+
     /// Cross product (right-handed: `x × y = z`).
     #[must_use]
     #[inline(always)]

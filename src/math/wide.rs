@@ -2,7 +2,8 @@
 //!
 //! The exact `u32` square root, the Q16 division without a divide instruction, and the
 //! wide products and shifts, written out on ARMv6-M (Cortex-M0/M0+) without library
-//! calls — the same bits as the operators, which every other target uses.
+//! calls — the same bits as the operators, which every other target uses; and the
+//! exact `f64` product of two `f32`, which the silhouettes' dot products are made of.
 
 /// `SQRT_TABLE[k] = ⌊√((k + 64)·2²⁴)⌋` (the last entry, `2¹⁶`, kept as `2¹⁶ − 1`):
 /// [`isqrt32`]'s estimate of `√n` at `n`'s top eight bits, `n >> 24` in `[64, 256)`
@@ -201,6 +202,53 @@ pub(crate) fn mul_wide_halves(x: u32, y: u32) -> u64 {
     let (lo, carry) = (x0 * y0).overflowing_add(mid << 16);
     let hi = x1 * y1 + (mid >> 16) + (u32::from(mid_carry) << 16) + u32::from(carry);
     (u64::from(hi) << 32) | u64::from(lo)
+}
+
+/// `f64::from(a) * f64::from(b)`: on ARMv6-M from the significands' 24×24-bit integer
+/// product ([`mul_f32_exact_words`]; there an `f64` multiply is a software routine of
+/// a few hundred cycles); elsewhere the operator.
+///
+/// The product is exact: two 24-bit significands make at most 48 bits, within `f64`'s
+/// 53, and two `f32` exponents stay inside `f64`'s normal range. So both ways give the
+/// same bits.
+#[inline(always)]
+pub(crate) fn mul_f32_exact(a: f32, b: f32) -> f64 {
+    if ARMV6M {
+        mul_f32_exact_words(a, b)
+    } else {
+        f64::from(a) * f64::from(b)
+    }
+}
+
+/// [`mul_f32_exact`] from 32-bit words, the same bits for every `a`, `b`.
+///
+/// For normal `a` and `b`, the significands `ma, mb ∈ [2²³, 2²⁴)` give
+/// `a·b = ±ma·mb·2^(ea + eb − 300)` (`ea`, `eb` the biased exponents) with
+/// `ma·mb ∈ [2⁴⁶, 2⁴⁸)`: its top bit is bit `46 + top`, so the `f64`'s exponent is
+/// `ea + eb − 254 + top ∈ [−252, 255]` (normal) and its fraction the bits below the top
+/// one, shifted up to 52 bits — no bit is lost, so no rounding. A zero times a finite
+/// number is a zero signed as the product; a subnormal, infinite or NaN operand takes
+/// the operator.
+#[inline(always)]
+pub(crate) fn mul_f32_exact_words(a: f32, b: f32) -> f64 {
+    let (x, y) = (a.to_bits(), b.to_bits());
+    let (ea, eb) = ((x >> 23) & 0xff, (y >> 23) & 0xff);
+    let sign = u64::from((x ^ y) & 0x8000_0000) << 32;
+    // Biased exponents 1..=254 are the normal numbers.
+    if ea.wrapping_sub(1) >= 254 || eb.wrapping_sub(1) >= 254 {
+        // A zero times a finite number (common: a vector along an axis) is a zero of
+        // the two signs' product.
+        if (x << 1 == 0 && eb != 255) || (y << 1 == 0 && ea != 255) {
+            return f64::from_bits(sign);
+        }
+        return f64::from(a) * f64::from(b);
+    }
+    let (ma, mb) = ((x & 0x7f_ffff) | 0x80_0000, (y & 0x7f_ffff) | 0x80_0000);
+    let p = mul_wide(ma, mb);
+    // Constant shifts only: a variable one is a library call on ARMv6-M.
+    let (top, frac) = if p >> 47 != 0 { (1, p << 5) } else { (0, p << 6) };
+    let exp = u64::from(ea + eb + top + 1023 - 254);
+    f64::from_bits(sign | (exp << 52) | (frac & ((1 << 52) - 1)))
 }
 
 /// `x·y` of two `i32` as an `i64`: on ARMv6-M from the magnitudes' 32×32-bit product

@@ -128,14 +128,11 @@ pub(super) struct IntRow<'s, 'c, A> {
     i: u32,
     end: u32,
     j: u32,
-    /// The current column's `x` and its step `s`; `a = |d|²` (`≤ 2⁵²`) at the current
-    /// column, stepped exactly like the discriminant (`a += Δa; Δa += 2s²`).
+    /// The current column's `x` and its step `s`.
     x: i32,
     s: i32,
-    a: i64,
-    da: i64,
-    dda: i64,
-    /// The row's `α = y² + F²`.
+    /// The row's `α = y² + F²`: `a = |d|² = x² + α` ([`Self::a`]) is formed only at a
+    /// hit, not stepped at every column.
     alpha: i64,
 }
 
@@ -153,9 +150,6 @@ impl<'s, 'c, A: DerefMut<Target = [Active<'c>]>> IntRow<'s, 'c, A> {
             j: 0,
             x: 0,
             s: 2i32 << frame.k,
-            a: 0,
-            da: 0,
-            dda: 0,
             alpha: 0,
         }
     }
@@ -172,17 +166,12 @@ impl<'s, 'c, A: DerefMut<Target = [Active<'c>]>> IntRow<'s, 'c, A> {
         let (_, alpha) = row_y(self.frame, j);
         let w = self.frame.camera.size().width as i32;
         let x0 = (2 * self.frame.i0 as i32 + 1 - w) << self.frame.k;
-        // a = x² + α and its first difference 2xs + s² at the first column.
-        let (xw, sw) = (i64::from(x0), i64::from(self.s));
         self.lo_all = lo_all;
         self.hi_all = hi_all;
         self.i = self.frame.i0;
         self.end = self.frame.i1;
         self.j = j;
         self.x = x0;
-        self.a = xw * xw + alpha;
-        self.da = 2 * xw * sw + sw * sw;
-        self.dda = 2 * sw * sw;
         self.alpha = alpha;
     }
 
@@ -219,23 +208,23 @@ impl<'s, 'c, A: DerefMut<Target = [Active<'c>]>> IntRow<'s, 'c, A> {
         (self.end - self.i) as usize
     }
 
-    /// One column to the right: `x`, and `a` by its exact differences.
+    /// One column to the right.
     #[inline(always)]
     fn step(&mut self) {
         self.i += 1;
         self.x += self.s;
-        self.a += self.da;
-        self.da += self.dda;
     }
 
-    /// `n` columns to the right (the background before the spans), `a` and its
-    /// difference evaluated directly at the new column.
+    /// `n` columns to the right (the background before the spans).
     fn skip(&mut self, n: u32) {
         self.i += n;
         self.x += n as i32 * self.s;
-        let (x, s) = (i64::from(self.x), i64::from(self.s));
-        self.a = x * x + self.alpha;
-        self.da = 2 * x * s + s * s;
+    }
+
+    /// `a = |d|² = x² + α` at the current column (`≤ 2⁵²`), exactly.
+    #[inline(always)]
+    fn a(&self) -> i64 {
+        mul_i32_wide(self.x, self.x) + self.alpha
     }
 
     /// Column `i` (at `self.x`): the closest sphere hit (sphere, `T`) and its colour.
@@ -265,7 +254,7 @@ impl<'s, 'c, A: DerefMut<Target = [Active<'c>]>> IntRow<'s, 'c, A> {
                 let p = self.frame.p;
                 // a and T (both > 0) shifted by p: a >> p < 2³¹, T >> p < 2³² (the
                 // rule's ranges); the products are below 2⁵⁸, their difference an i64.
-                let a = shr_u64_low(self.a as u64, p);
+                let a = shr_u64_low(self.a() as u64, p);
                 let t = shr_u64_low(t as u64, p);
                 let num = mul_wide(a, sp.lz as u32) as i64 - mul_wide(t, self.frame.f as u32) as i64;
                 shade(sp.rgb, nz_q16(num, mul_wide(a, sp.rho as u32), u32::from(sp.q)))
@@ -335,7 +324,7 @@ impl<'c, A: DerefMut<Target = [Active<'c>]>> Iterator for IntSamples<'_, 'c, A> 
         let hit = best.map(|(sp, t)| {
             // The integer ray's t (λ units, integer d) as the caller's: the hit's
             // distance T/a·|d_int|/λ along the f32 direction.
-            let a = row.a as f64;
+            let a = row.a() as f64;
             let dist = (t as f64 / libm::sqrt(a) / f64::from(row.frame.lambda)) as f32;
             Hit {
                 index: sp.index,

@@ -50,7 +50,7 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
                 break;
             };
             let p = origin + dir * t;
-            let s = self.surface(k, p, dir);
+            let s = self.surface(k, p, dir, depth == 0);
             // The shadow spans hold for the primary ray only.
             let column = (depth == 0).then_some(i);
             let local = self.local(k, &s, p, dir, column);
@@ -113,7 +113,7 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
                 break;
             };
             let p = origin + dir * t;
-            let s = self.surface(k, p, dir);
+            let s = self.surface(k, p, dir, depth == 0);
             if I::KEPT && depth == 0 {
                 self.fine_checker(k, t, dir, id);
             }

@@ -17,31 +17,46 @@ use crate::trace::lit::shadow::ShadowRay;
 use crate::trace::rows::Ident;
 use crate::trace::shade::lab1_factor;
 
-/// A surface point: its normal turned toward the ray's origin, the normal Lab #1 uses,
-/// colour and material.
+/// A surface point: its normal turned toward the ray's origin, colour and material.
 pub(super) struct Surface {
     pub(super) n: Vec3,
-    /// `n·(−w)` with a sphere's outward normal or a plane's turned one (Lab #1).
-    pub(super) lab_nz: f32,
     pub(super) rgb: [f32; 3],
     pub(super) material: Material,
     /// The ray met a sphere's inner surface (it can meet it again).
     pub(super) inside: bool,
 }
 
+impl Surface {
+    /// Lab #1's colour: the colour times `clamp(n_z, 0.3, 1)`, `n_z = n·(−w)` with a
+    /// sphere's outward normal (`n` turned back where the ray is inside: `(−n)·w` and
+    /// `−(n·w)` differ at most in a zero's sign, which the clamp does not see) or a
+    /// plane's turned one. Formed only in a frame without lights, the one that reads it.
+    #[inline(always)]
+    fn lab1(&self, w: Vec3) -> [f32; 3] {
+        let nw = self.n.dot(w);
+        let kz = lab1_factor(if self.inside { nw } else { -nw });
+        self.rgb.map(|c| c * kz)
+    }
+}
+
 impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const P: usize, const D: usize>
     LitRow<'_, '_, T, Q, O, N, L, P, D>
 {
-    /// The surface at `p` of object `k`, met by a ray along `dir`.
+    /// The surface at `p` of object `k`, met by a ray along `dir`; `primary`: the ray is
+    /// the pixel's own, whose hit the row's primary test found.
+    ///
+    /// A plane's normal is turned toward the ray's origin by the sign of `dir·n`. For a
+    /// primary ray that sign is the frame's: the hit had `t = s/(dir·n) > 0` with this
+    /// very `dir·n`, so it has the sign of `s`, and the normal is chosen by `s` without
+    /// the product (the same normal, bit for bit).
     #[inline(always)]
-    pub(super) fn surface(&self, k: ObjectId, p: Vec3, dir: Vec3) -> Surface {
+    pub(super) fn surface(&self, k: ObjectId, p: Vec3, dir: Vec3, primary: bool) -> Surface {
         let f = self.f;
         if let Some(s) = f.spheres.get(k.index()) {
             let n_out = (p - s.geom.l) * s.shade.inv_r;
             let inside = dir.dot(n_out) > 0.0;
             Surface {
                 n: if inside { -n_out } else { n_out },
-                lab_nz: -n_out.dot(f.w),
                 rgb: s.shade.rgb,
                 material: s.shade.material,
                 inside,
@@ -51,10 +66,13 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
             .checked_sub(f.spheres.len())
             .and_then(|i| f.planes.get(i))
         {
-            let n = if dir.dot(plane.n) > 0.0 { -plane.n } else { plane.n };
+            let away = if primary {
+                plane.s > 0.0
+            } else {
+                dir.dot(plane.n) > 0.0
+            };
             Surface {
-                n,
-                lab_nz: -n.dot(f.w),
+                n: if away { -plane.n } else { plane.n },
                 rgb: plane.color_at(p),
                 material: plane.material,
                 inside: false,
@@ -63,7 +81,6 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
             // Unreachable (`k` comes from a hit); shade as the background.
             Surface {
                 n: f.w,
-                lab_nz: 0.0,
                 rgb: f.bg,
                 material: Material::DEFAULT,
                 inside: false,
@@ -83,8 +100,7 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
         column: Option<u32>,
     ) -> [f32; 3] {
         if L == 0 || self.f.lights.is_empty() {
-            let kz = lab1_factor(s.lab_nz);
-            return s.rgb.map(|c| c * kz);
+            return s.lab1(self.f.w);
         }
         let f = self.f;
         // v, the unit vector back along the ray, only where a highlight needs it.
@@ -171,8 +187,7 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
         id: &mut I,
     ) -> [f32; 3] {
         if L == 0 || self.f.lights.is_empty() {
-            let kz = lab1_factor(s.lab_nz);
-            return s.rgb.map(|c| c * kz);
+            return s.lab1(self.f.w);
         }
         let f = self.f;
         // v, the unit vector back along the ray, only where a highlight needs it.

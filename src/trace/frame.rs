@@ -13,7 +13,7 @@ use embedded_graphics::primitives::Rectangle;
 use heapless::Vec;
 
 use crate::camera::cone::ViewCone;
-use crate::camera::span::Silhouette;
+use crate::camera::span::{ImageBasis, Silhouette};
 use crate::camera::Camera;
 use crate::error::{FrameError, ObjectRef};
 use crate::math::vec3::Vec3;
@@ -122,11 +122,13 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         // A push loop, not `collect()`: heapless' `FromIterator` panics on overflow, and
         // the optimiser cannot see that a `Scene<N>` never holds more than N.
         spheres.clear();
+        // The camera's part of every silhouette, once for all spheres.
+        let basis = ImageBasis::of(camera);
         for s in scene.spheres() {
             // A sphere the scale left out is one no ray of the frame meets: it gets
             // no span, so its constants (outside the frame's range) are never read.
             let unseen = cone.is_some_and(|c| c.misses(s.center - camera.eye(), s.radius));
-            Self::push_sphere::<M, S>(spheres, s, &setup, &row, unseen);
+            Self::push_sphere::<M, S>(spheres, s, &setup, &basis, &row, unseen);
         }
         Some(Self {
             camera,
@@ -164,6 +166,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
         spheres: &mut Vec<FrameSphere<T, Sh>, N>,
         s: &Sphere,
         setup: &FrameSetup<'_>,
+        basis: &ImageBasis,
         row: &RowGeometry,
         unseen: bool,
     ) {
@@ -181,7 +184,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
             let silhouette = if unseen {
                 Silhouette::NONE
             } else if options.span_culling {
-                Silhouette::new(geom.l, radius, camera, T::MARGIN, step_err)
+                Silhouette::new_in(geom.l, radius, basis, T::MARGIN, step_err)
             } else {
                 Silhouette::ALL
             };
@@ -192,7 +195,7 @@ impl<'a, T: TestStrategy, Sh: Shader> Frame<'a, T, Sh> {
             let extent = || {
                 silhouette
                     .extent()
-                    .or_else(|| Silhouette::new(geom.l, radius, camera, T::MARGIN, 0.0).extent())
+                    .or_else(|| Silhouette::new_in(geom.l, radius, basis, T::MARGIN, 0.0).extent())
             };
             // Never fails: the caller's M is at least the scene's sphere count.
             let _ = spheres.push(FrameSphere {

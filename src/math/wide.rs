@@ -3,7 +3,8 @@
 //! The exact `u32` square root, the Q16 division without a divide instruction, and the
 //! wide products and shifts, written out on ARMv6-M (Cortex-M0/M0+) without library
 //! calls — the same bits as the operators, which every other target uses; and the
-//! exact `f64` product of two `f32`, which the silhouettes' dot products are made of.
+//! exact `f64` product of two normal `f32` (or a zero), which the silhouettes' dot
+//! products are made of.
 
 /// `SQRT_TABLE[k] = ⌊√((k + 64)·2²⁴)⌋` (the last entry, `2¹⁶`, kept as `2¹⁶ − 1`):
 /// [`isqrt32`]'s estimate of `√n` at `n`'s top eight bits, `n >> 24` in `[64, 256)`

@@ -27,10 +27,11 @@ pub(super) struct Surface {
 }
 
 impl Surface {
-    /// Lab #1's colour: the colour times `clamp(n_z, 0.3, 1)`, `n_z = n·(−w)` with a
+    /// Lab #1's colour: the colour times [`lab1_factor`] of `n_z = n·(−w)` with a
     /// sphere's outward normal (`n` turned back where the ray is inside: `(−n)·w` and
-    /// `−(n·w)` differ at most in a zero's sign, which the clamp does not see) or a
-    /// plane's turned one. Formed only in a frame without lights, the one that reads it.
+    /// `−(n·w)` differ at most in the sign of a zero or a NaN, which the factor does not
+    /// see) or a plane's turned one. Formed only in a frame without lights, the one that
+    /// reads it.
     #[inline(always)]
     fn lab1(&self, w: Vec3) -> [f32; 3] {
         let nw = self.n.dot(w);
@@ -46,9 +47,11 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
     /// the pixel's own, whose hit the row's primary test found.
     ///
     /// A plane's normal is turned toward the ray's origin by the sign of `dir·n`. For a
-    /// primary ray that sign is the frame's: the hit had `t = s/(dir·n) > 0` with this
-    /// very `dir·n`, so it has the sign of `s`, and the normal is chosen by `s` without
-    /// the product (the same normal, bit for bit).
+    /// primary ray that sign is the frame's: the hit had `0 < t = s/(dir·n) < t_max ≤ ∞`
+    /// with this very `dir·n` (a quotient's sign is the product of its operands' signs,
+    /// and `dir·n = ±0` gives `t = ±∞` or NaN, never below `t_max`), so it has the sign
+    /// of `s`, and the normal is chosen by `s` without the product (the same normal, bit
+    /// for bit).
     #[inline(always)]
     pub(super) fn surface(&self, k: ObjectId, p: Vec3, dir: Vec3, primary: bool) -> Surface {
         let f = self.f;

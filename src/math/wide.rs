@@ -230,7 +230,11 @@ pub(crate) fn mul_f32_exact(a: f32, b: f32) -> f64 {
 /// one, shifted up to 52 bits — no bit is lost, so no rounding. A zero times a finite
 /// number is a zero signed as the product; a subnormal, infinite or NaN operand takes
 /// the operator.
-#[inline(always)]
+///
+/// Out of line: inlined at each of a dot product's three products, its registers
+/// spilled into the caller's frame (the integer plan's grew by about 300 bytes on the
+/// Cortex-M0).
+#[inline(never)]
 pub(crate) fn mul_f32_exact_words(a: f32, b: f32) -> f64 {
     let (x, y) = (a.to_bits(), b.to_bits());
     let (ea, eb) = ((x >> 23) & 0xff, (y >> 23) & 0xff);

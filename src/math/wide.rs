@@ -206,8 +206,8 @@ pub(crate) fn mul_wide_halves(x: u32, y: u32) -> u64 {
 }
 
 /// `f64::from(a) * f64::from(b)`: on ARMv6-M from the significands' 24×24-bit integer
-/// product ([`mul_f32_exact_words`]; there an `f64` multiply is a software routine of
-/// a few hundred cycles); elsewhere the operator.
+/// product ([`mul_f32_exact_words`]; there an `f64` multiply is a software routine,
+/// its cost in `docs/firmware.md`); elsewhere the operator.
 ///
 /// The product is exact: two 24-bit significands make at most 48 bits, within `f64`'s
 /// 53, and two `f32` exponents stay inside `f64`'s normal range. So both ways give the
@@ -232,8 +232,8 @@ pub(crate) fn mul_f32_exact(a: f32, b: f32) -> f64 {
 /// the operator.
 ///
 /// Out of line: inlined at each of a dot product's three products, its registers
-/// spilled into the caller's frame (the integer plan's grew by about 300 bytes on the
-/// Cortex-M0).
+/// spill into the caller's frame and deepen the integer plan's stack on the Cortex-M0
+/// (the measured stacks: `docs/firmware.md`).
 #[inline(never)]
 pub(crate) fn mul_f32_exact_words(a: f32, b: f32) -> f64 {
     let (x, y) = (a.to_bits(), b.to_bits());

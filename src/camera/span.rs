@@ -506,40 +506,32 @@ fn enlarged(r: f64, l2: f64, l_len: f64, margin: Margin, step_err: f64) -> f64 {
     r_eff + 2.0 * step_err * (1.0 + 1e-3) * l_len
 }
 
-/// The camera's part of every silhouette's ellipse: the image's vectors and their dot
-/// products in `f64`, which do not depend on the sphere.
+/// The camera's part of every silhouette's ellipse: the dot products of the image's
+/// vectors in `f64`, which do not depend on the sphere, beside the camera they come from.
 ///
 /// Worked out once per frame, not once per sphere: in software `f64` (a chip without a
 /// double-precision unit) they are 18 of a silhouette's products. The same operations
 /// in the same order as where each is used, so every ellipse is the same to the bit.
+/// It keeps the six products and a reference (56 B on a 32-bit target), not copies of
+/// the camera's vectors: it lives in the frame set-up's stack frame.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct ImageBasis {
-    /// The direction to the upper-left pixel centre, `F`.
-    f: Vec3,
-    /// One pixel to the right, `du`.
-    du: Vec3,
-    /// One scanline down, `dv`.
-    dv: Vec3,
-    /// The view direction, `w`.
-    w: Vec3,
+pub(crate) struct ImageBasis<'c> {
+    /// The camera: `F`, `du`, `dv` and `w` are read from it.
+    camera: &'c Camera,
     /// `du·du`, `du·dv`, `dv·dv`, `F·du`, `F·dv`, `F·F`.
     dots: [f64; 6],
 }
 
-impl ImageBasis {
-    /// The camera's vectors and their dot products.
-    pub(crate) fn of(camera: &Camera) -> Self {
-        let (f, du, dv, w) = (
+impl<'c> ImageBasis<'c> {
+    /// The camera's dot products.
+    pub(crate) fn of(camera: &'c Camera) -> Self {
+        let (f, du, dv) = (
             camera.first_direction(),
             camera.pixel_step(),
             camera.scanline_step(),
-            camera.w(),
         );
         Self {
-            f,
-            du,
-            dv,
-            w,
+            camera,
             dots: [
                 du.dot_f64(du),
                 du.dot_f64(dv),
@@ -573,7 +565,13 @@ fn ellipse<const INNER: bool>(
     margin: Margin,
     step_err: f32,
 ) -> Option<Silhouette> {
-    let ImageBasis { f, du, dv, w, dots } = *basis;
+    let ImageBasis { camera, dots } = *basis;
+    let (f, du, dv, w) = (
+        camera.first_direction(),
+        camera.pixel_step(),
+        camera.scanline_step(),
+        camera.w(),
+    );
     let [du_du, du_dv, dv_dv, f_du, f_dv, f_f] = dots;
     let r = f64::from(radius);
     let l2 = l.dot_f64(l);

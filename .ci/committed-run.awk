@@ -1,14 +1,18 @@
 # A firmware run against its committed run (lab/data/*.txt), both as
-# "hash SCENE METHOD 0x… pixels P instr I … stack S" lines, the committed file first:
-#   awk -v scenes="lab far …" -v label="Lab #1" -f .ci/committed-run.awk COMMITTED RUN
-# Every committed render of `scenes` (all scenes where it is empty) must be in the run,
-# once, with the same hash, instructions within 1 % and the same stack: the docs quote
-# the committed runs' figures, so a render whose stack moved either way fails until the
-# run is measured again (the calling script's --update). Exits 1 on any of it.
-BEGIN { n = split(scenes, s, " "); for (i = 1; i <= n; i++) pick[s[i]] = 1 }
+# "KIND SCENE RENDER 0x… pixels P instr I … stack S" lines, the committed file first:
+#   awk -v kind=hash -v scenes="lab far …" -v label="Lab #1" -f .ci/committed-run.awk COMMITTED RUN
+# KIND is the lines' first word (`hash` for the renders, `aa` for the anti-aliasing
+# firmware's). Every committed render of `scenes` (all scenes where it is empty) must be
+# in the run, once, with the same hash, instructions within 1 % and the same stack: the
+# docs quote the committed runs' figures, so a render whose stack moved either way fails
+# until the run is measured again (the calling script's --update). Exits 1 on any of it.
+BEGIN {
+    if (kind == "") { print "committed-run.awk: no kind (-v kind=hash)"; bad = 1; exit 1 }
+    n = split(scenes, s, " "); for (i = 1; i <= n; i++) pick[s[i]] = 1
+}
 function field(name,   i) { for (i = 1; i < NF; i++) if ($i == name) return $(i + 1); return "" }
 function whole(x) { return x ~ /^[0-9]+$/ }
-$1 != "hash" || (n > 0 && !($2 in pick)) { next }
+$1 != kind || (n > 0 && !($2 in pick)) { next }
 FNR == NR {
     key = $2 " " $3
     hash[key] = $4; count[key] = field("instr"); stack[key] = field("stack"); committed++

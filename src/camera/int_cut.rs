@@ -1,6 +1,7 @@
 //! A silhouette's per-row cut in integer arithmetic ([`IntCut`]), for the integer kernel.
 
-use super::span::{rows_around, Ellipse, Silhouette, TWO_M16, TWO_M17, TWO_M20, TWO_M50};
+use super::span::{rows_around, Ellipse, Silhouette};
+use crate::math::wide::{isqrt32, mul_i32_wide, mul_wide};
 
 /// A silhouette's per-row cut in integer arithmetic, for the integer kernel.
 ///
@@ -34,8 +35,13 @@ use super::span::{rows_around, Ellipse, Silhouette, TWO_M16, TWO_M17, TWO_M20, T
 ///   at its largest;
 /// - `lo = ⌊xc − hw − pad⌋`, `hi = ⌊xc + hw + pad⌋ + 1`.
 ///
+/// The coefficients come from the `f32` ones' bits in integer arithmetic (no soft
+/// `f64` on a chip without an FPU): the roundings below are exact, and the pad is an
+/// integer upper bound of its formula, term by term (at most 3/65536 above the formula
+/// rounded up; `int_cut_coefficients_are_their_definitions`).
+///
 /// Where the ranges that keep its coefficients in 32 bits and its products in 64 do
-/// not hold (`q ≥ 2⁸`, `h0 ≥ 2²⁴ − 1`, `|kx|, |xc0|, |dy| ≥ 2¹⁵`, `|y0| > 2¹⁸`) or a
+/// not hold (`q ≥ 2⁸`, `h0·(1 + 2⁻¹⁶) ≥ 2²⁴ − 1`, `|kx|, |xc0|, |dy| ≥ 2¹⁵`, `|y0| > 2¹⁸`) or a
 /// coefficient is not finite, every column ([`IntCut::All`]): slower, never wrong.
 /// Test: `int_cut_holds_the_exact_row_span` (in `camera/span/tests.rs`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -50,7 +56,8 @@ pub(crate) enum IntCut {
         q24: u32,
         /// `⌈2⁸·h0·(1 + 2⁻¹⁶)⌉`.
         h8: u32,
-        /// `round(2¹⁶·xc0)`, `round(2¹⁶·kx)` and `⌈2¹⁶·(pad + e)⌉` at the largest `|dy|`.
+        /// `round(2¹⁶·xc0)`, `round(2¹⁶·kx)` and `⌈2¹⁶·(pad + e)⌉` at the largest `|dy|`
+        /// (or a few units above: [`IntCut`]).
         xc16: i32,
         kx16: i32,
         pad16: i32,
@@ -80,45 +87,130 @@ impl Silhouette {
         else {
             return ((0, height), IntCut::All);
         };
-        let [y0i, y0f, q, h0, xc0, kx] = [y0i, y0f, q, h0, xc0, kx].map(f64::from);
-        // h0·(1 + 2⁻¹⁶) rounded up (two f64 roundings of 2⁻⁵³ each, under 2⁻⁵⁰).
-        let h0_up = h0 * (1.0 + TWO_M16) * (1.0 + TWO_M50);
-        // The comparisons also reject NaN.
-        if !(q > 0.0 && q < 256.0 && h0_up < 16_777_215.0 && y0i.abs() <= 262_144.0) {
+        // The comparisons also reject NaN and infinities.
+        if !(q > 0.0 && q < 256.0 && h0 < 16_777_216.0 && y0i.abs() <= 262_144.0 && y0f.abs() <= 1.0) {
             return (self.rows(height), IntCut::All);
         }
-        if h0_up < 0.0 {
+        if h0 < 0.0 {
             // No row: hw² < 0 at every dy.
             return ((0, 0), IntCut::All);
         }
+        // h8 = ⌈2⁸·h0·(1 + 2⁻¹⁶)⌉ = ⌈m·(2¹⁶ + 1)·2ᵉ⁻⁸⌉ for h0 = m·2ᵉ (m < 2²⁴).
+        let (m, e) = scaled(h0, 0);
+        let h8 = ceil_shift((m << 16) + m, e - 8);
+        // h0·(1 + 2⁻¹⁶) < 2²⁴ − 1, the range the row test's products are argued for.
+        let Ok(h8) = u32::try_from(h8) else {
+            return (self.rows(height), IntCut::All);
+        };
+        if h8 >= 4_294_967_040 {
+            return (self.rows(height), IntCut::All);
+        }
+        // y0i is whole (|y0i| ≤ 2¹⁸): ⌊2¹²·y0⌋ = 2¹²·y0i + ⌊2¹²·y0f⌋.
+        let (m, e) = scaled(y0f, 12);
+        let y0f12 = if y0f < 0.0 {
+            -(ceil_shift(m, e) as i64)
+        } else {
+            floor_shift(m, e) as i64
+        };
+        let (m, e) = scaled(q, 24);
         let rows = Rows {
-            // Exact: y0i·2¹² is an integer, y0f·2¹² is exact in f64.
-            y12: (y0i * 4096.0) as i32 + libm::floor(y0f * 4096.0) as i32,
-            q24: libm::floor(q * 16_777_216.0) as u32,
-            h8: libm::ceil(h0_up * 256.0) as u32,
+            y12: (y0i as i32) * 4096 + y0f12 as i32,
+            q24: floor_shift(m, e) as u32,
+            h8,
         };
         let (j0, j1) = rows.interval(height);
         if j0 >= j1 {
             return ((j0, j1), IntCut::All);
         }
-        let y0 = y0i + y0f;
-        let dy_max = (f64::from(j0) - y0).abs().max((f64::from(j1) - y0).abs());
-        let hw_max = libm::sqrt(h0_up);
-        let centre_err = TWO_M17 + TWO_M17 * dy_max + (kx.abs() + TWO_M17) / 4096.0 + TWO_M16;
-        let pad = 1.0 + (xc0.abs() + kx.abs() * dy_max + hw_max) * TWO_M20 + centre_err;
-        if !(kx.abs() < 32_768.0 && xc0.abs() < 32_768.0 && dy_max < 32_768.0 && pad < 16.0) {
+        if !(kx.abs() < 32_768.0 && xc0.abs() < 32_768.0) {
+            return ((j0, j1), IntCut::All);
+        }
+        // 2¹²·|j − y0| ≤ |2¹²·j − y12| + 1 (2¹²·y0 in [y12, y12 + 1)): the rows' largest
+        // |dy| in 2⁻¹² rows, rounded up.
+        let d12 = |j: u32| (i64::from(j) * 4096 - i64::from(rows.y12)).unsigned_abs() + 1;
+        let dy12 = d12(j0).max(d12(j1));
+        if dy12 >= 32_768 * 4096 {
+            return ((j0, j1), IntCut::All);
+        }
+        let ((xc16, x_up), (kx16, k_up)) = (round_and_up(xc0), round_and_up(kx));
+        // hw ≤ √(h8/2⁸) ≤ ⌈√h8⌉/2⁴.
+        let r = isqrt32(h8);
+        let hw4 = u64::from(r + u32::from(r * r < h8));
+        // 2¹⁶·(pad + e) = 2¹⁶ + (|xc0| + |kx·dy| + hw)·2⁻⁴ + ½ + ½·|dy| + 2⁴·|kx| + 2⁻¹³ + 1,
+        // times 2³² and bounded from above term by term (|xc0| ≤ x_up·2⁻¹⁶,
+        // |kx| ≤ k_up·2⁻¹⁶, |dy| ≤ dy12·2⁻¹², hw ≤ hw4·2⁻⁴): below 2⁵⁹.
+        let t32 = (1u64 << 48)
+            + (x_up << 12)
+            + mul_wide(k_up as u32, dy12 as u32)
+            + (hw4 << 24)
+            + (1 << 31)
+            + (dy12 << 19)
+            + (k_up << 20)
+            + (1 << 19)
+            + (1 << 32);
+        // ⌈2¹⁶·(pad + e)⌉ at most: below 16 pixels, or every column.
+        let pad16 = (t32 >> 32) + u64::from(t32 as u32 != 0);
+        if pad16 >= 16 << 16 {
             return ((j0, j1), IntCut::All);
         }
         let cut = IntCut::Ellipse {
             y12: rows.y12,
             q24: rows.q24,
             h8: rows.h8,
-            xc16: libm::round(xc0 * 65_536.0) as i32,
-            kx16: libm::round(kx * 65_536.0) as i32,
-            pad16: libm::ceil(pad * 65_536.0) as i32,
+            xc16,
+            kx16,
+            pad16: pad16 as i32,
         };
         ((j0, j1), cut)
     }
+}
+
+/// `|x|·2ᵏ = m·2ᵉ` exactly, as `(m, e)` with `m < 2²⁴` (`x` finite).
+#[inline(always)]
+fn scaled(x: f32, k: i32) -> (u64, i32) {
+    let bits = x.to_bits() & 0x7fff_ffff;
+    let (exp, mant) = ((bits >> 23) as i32, u64::from(bits & 0x7f_ffff));
+    if exp == 0 {
+        (mant, k - 149)
+    } else {
+        (mant | 1 << 23, exp - 150 + k)
+    }
+}
+
+/// `⌊m·2ᵉ⌋` (`m < 2⁴²`; the callers' ranges keep it below 2⁶⁴, else `u64::MAX`).
+#[inline(always)]
+fn floor_shift(m: u64, e: i32) -> u64 {
+    match e {
+        0..=63 => m << e,
+        64.. => u64::MAX,
+        -63..0 => m >> -e,
+        _ => 0,
+    }
+}
+
+/// `⌈m·2ᵉ⌉` (`m < 2⁴²`; the callers' ranges keep it below 2⁶⁴, else `u64::MAX`).
+#[inline(always)]
+fn ceil_shift(m: u64, e: i32) -> u64 {
+    match e {
+        0..=63 => m << e,
+        64.. => u64::MAX,
+        -63..0 => (m >> -e) + u64::from(m & ((1 << -e) - 1) != 0),
+        _ => u64::from(m != 0),
+    }
+}
+
+/// `round(2¹⁶·x)` (halves away from zero, as `f64::round`) and `⌈2¹⁶·|x|⌉`, for
+/// `|x| < 2¹⁵`.
+#[inline(always)]
+fn round_and_up(x: f32) -> (i32, u64) {
+    let (m, e) = scaled(x, 16);
+    // ⌊2¹⁶·|x| + ½⌋ = ⌊(m + 2⁻ᵉ⁻¹)·2ᵉ⌋ where e < 0 (below 2³¹).
+    let rounded = match e {
+        0.. => floor_shift(m, e),
+        -63..0 => (m + (1 << (-e - 1))) >> -e,
+        _ => 0,
+    } as i32;
+    (if x < 0.0 { -rounded } else { rounded }, ceil_shift(m, e))
 }
 
 /// The cut's row test: its coefficients `⌊2¹²·y0⌋`, `⌊2²⁴·q⌋` and
@@ -135,7 +227,6 @@ impl Rows {
     /// where that bound is below zero (no column).
     #[inline(always)]
     fn hw2(self, j: u32) -> Option<(i64, u64)> {
-        use crate::math::wide::mul_wide;
         // 2¹²·dy in (dy12 − 1, dy12]; m ≤ 2¹²·|dy| < 2³¹ (j < 2¹⁶, |y0| ≤ 2¹⁸ + 1).
         let dy12 = (i64::from(j) << 12) - i64::from(self.y12);
         let m = (if dy12 > 0 { dy12 - 1 } else { -dy12 }) as u32;
@@ -163,7 +254,6 @@ impl IntCut {
     /// the sphere; `None` if none can.
     #[inline]
     pub(crate) fn row_span(&self, j: u32, width: u32) -> Option<(u32, u32)> {
-        use crate::math::wide::{isqrt32, mul_i32_wide};
         let IntCut::Ellipse {
             y12,
             q24,

@@ -493,8 +493,6 @@ pub(super) const TWO_M10: f64 = 1.0 / 1024.0;
 pub(super) const TWO_M16: f64 = 1.0 / 65_536.0;
 pub(super) const TWO_M17: f64 = 1.0 / 131_072.0;
 pub(super) const TWO_M18: f64 = 1.0 / 262_144.0;
-pub(super) const TWO_M20: f64 = 1.0 / 1_048_576.0;
-pub(super) const TWO_M50: f64 = 1.0 / 1_125_899_906_842_624.0;
 
 /// The sphere's radius `r` (at distance `l_len`, `l2` its square, from the eye) enlarged for the test's
 /// rounding `margin`, then for the stepping's direction error `step_err`.

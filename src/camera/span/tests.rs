@@ -5,6 +5,8 @@ use super::*;
 use crate::camera::int_cut::IntCut;
 use embedded_graphics::prelude::Size;
 
+const TWO_M20: f64 = 1.0 / 1_048_576.0;
+
 /// Uniform `f32` draws in `[lo, hi)` from an xorshift64 generator seeded `state`.
 fn uniform(mut state: u64) -> impl FnMut(f32, f32) -> f32 {
     move |lo, hi| {
@@ -142,6 +144,66 @@ fn int_cut_holds_the_exact_row_span() {
         assert_eq!(sil.int_cut_rows(48).1, IntCut::All, "{sil:?}");
     }
     assert_eq!(IntCut::All.row_span(7, 48), Some((0, 48)));
+}
+
+/// The integer cut's coefficients against their definitions evaluated in `f64` (the
+/// roundings [`IntCut`] states): `y12`, `q24`, `xc16` and `kx16` equal, `h8` the
+/// exact ceiling (the `f64` product rounded up by a relative `2⁻⁵⁰` more can be one
+/// above it, never below), and `pad16` at least `⌈2¹⁶·(pad + e)⌉` in `f64` and at
+/// most 3/65536 above it: random coefficients as above.
+#[test]
+fn int_cut_coefficients_are_their_definitions() {
+    let mut next = uniform(0x2545_f491_4f6c_dd1d);
+    let mut compared = 0;
+    for _ in 0..20_000 {
+        let y0 = next(-500.0, 3_000.0);
+        let (y0i, y0f) = (y0.round(), y0 - y0.round());
+        let (q, h0) = (
+            next(0.0, 1.0).powi(4) * 300.0 + f32::MIN_POSITIVE,
+            next(0.0, 1.0).powi(3) * 4.0e6,
+        );
+        let (xc0, kx) = (next(-500.0, 3_000.0), next(-3.0, 3.0));
+        let sil = Silhouette(Ellipse {
+            y0i,
+            y0f,
+            q,
+            h0,
+            xc0,
+            kx,
+        });
+        let ((j0, j1), cut) = sil.int_cut_rows(2_500);
+        let IntCut::Ellipse {
+            y12,
+            q24,
+            h8,
+            xc16,
+            kx16,
+            pad16,
+        } = cut
+        else {
+            continue;
+        };
+        let [y0i, y0f, q, h0, xc0, kx] = [y0i, y0f, q, h0, xc0, kx].map(f64::from);
+        let h0_up = h0 * (1.0 + TWO_M16) * (1.0 + 1.0 / (1u64 << 50) as f64);
+        assert_eq!(y12, (y0i * 4096.0) as i32 + (y0f * 4096.0).floor() as i32);
+        assert_eq!(q24, (q * 16_777_216.0).floor() as u32);
+        let h8_f64 = (h0_up * 256.0).ceil() as u32;
+        assert!(h8 <= h8_f64 && h8 + 1 >= h8_f64, "h8 {h8} vs {h8_f64}");
+        assert!(f64::from(h8) >= h0 * (1.0 + TWO_M16) * 256.0);
+        assert_eq!(xc16, (xc0 * 65_536.0).round() as i32);
+        assert_eq!(kx16, (kx * 65_536.0).round() as i32);
+        let y0 = y0i + y0f;
+        let dy_max = (f64::from(j0) - y0).abs().max((f64::from(j1) - y0).abs());
+        let centre_err = TWO_M17 + TWO_M17 * dy_max + (kx.abs() + TWO_M17) / 4096.0 + TWO_M16;
+        let pad = 1.0 + (xc0.abs() + kx.abs() * dy_max + h0_up.sqrt()) * TWO_M20 + centre_err;
+        let pad16_f64 = (pad * 65_536.0).ceil() as i32;
+        assert!(
+            pad16 >= pad16_f64 && pad16 <= pad16_f64 + 3,
+            "pad16 {pad16} vs {pad16_f64}"
+        );
+        compared += 1;
+    }
+    assert!(compared > 10_000, "too few cuts compared: {compared}");
 }
 
 /// `rows` is exactly the set of rows passing `row_span`'s test, so no row outside

@@ -217,10 +217,13 @@ pub struct RefScene {
 /// `(C, r)` when `| |P − C| − r | ≤ 2⁻¹⁶·(|P − E| + |C − E| + r)`, on a plane through
 /// `Q` with unit normal `n` when `|(P − Q)·n| ≤ 2⁻¹⁶·(|P − E| + |Q − E|)` (`E` the
 /// eye). The shadow segment toward such a lamp ends on that surface and is open there:
-/// a plane through the lamp never blocks it; a sphere through it blocks it iff the
-/// segment reaches the lamp from the sphere's inside and enters it on the way, i.e.
-/// `0 < 2σ < dist` with `σ = (P − C)·l` (the line meets the sphere at the lamp and
-/// `2σ` before it). The kernel decides these pairs by the same rule.
+/// a plane exactly through the lamp (in `f64`) never blocks it, one the lamp lies off
+/// blocks it iff the segment's ends are on opposite sides; a sphere through it blocks
+/// it iff the segment reaches the lamp from the sphere's inside and enters it on the
+/// way, i.e. `0 < 2σ < dist` with `σ = (P − C)·l` (the line meets the sphere at the
+/// lamp and `2σ` before it), or reaches a lamp inside it (`|P − C| < r`) from the
+/// outside side (`σ ≤ 0`) from a point outside it. The kernel decides these pairs by
+/// the same rule.
 pub const ON_SURFACE: f64 = 1.0 / 65_536.0;
 
 /// Whether lamp `p` lies on sphere `(c, r)` seen from `eye` ([`ON_SURFACE`]).
@@ -750,13 +753,21 @@ fn shadow(
                 // A chord of its own sphere ends at the lamp on it: open there.
                 (false, false)
             } else {
-                // The line meets the sphere at the lamp and 2σ before it.
+                // The line meets the sphere at the lamp and 2σ before it; from the
+                // outside side it enters just before a lamp inside the sphere, which
+                // blocks a segment from outside it.
                 let two_sigma = 2.0 * (at - c).dot(l);
                 let err = 2.0 * (e_p + ROUND * (c.length() + p.length() + r + light_size) + r * e_l);
-                (
-                    two_sigma > 0.0 && two_sigma < dist,
-                    two_sigma.abs() <= err || (two_sigma - dist).abs() <= err,
-                )
+                let doubt = two_sigma.abs() <= err || (two_sigma - dist).abs() <= err;
+                if two_sigma <= 0.0 && (at - c).length() < r {
+                    let gap = (p - c).length() - r;
+                    (
+                        gap > 0.0,
+                        doubt || gap.abs() <= e_p + ROUND * (c.length() + p.length() + r),
+                    )
+                } else {
+                    (two_sigma > 0.0 && two_sigma < dist, doubt)
+                }
             }
         } else if k == from {
             // Its own surface: only going into it, out at the chord.
@@ -787,8 +798,9 @@ fn shadow(
         if n_spheres + k == from || hidden(n_spheres + k) {
             continue;
         }
-        if lamp.is_some_and(|at| lamp_on_plane(at, eye, pl.point, n)) {
-            // Through the lamp: met only at the segment's open end.
+        if lamp.is_some_and(|at| lamp_on_plane(at, eye, pl.point, n) && (at - pl.point).dot(n) == 0.0) {
+            // Through the lamp: met only at the segment's open end. A lamp on it but
+            // off it in f64 is decided below, by the signs at the two ends.
             continue;
         }
         let h = (p - pl.point).dot(n);

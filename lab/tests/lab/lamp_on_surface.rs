@@ -202,3 +202,59 @@ fn lamps_on_and_near_every_surface_native() {
     let (cases, undecidable) = sweep(120, &offsets);
     println!("{cases} renders, {undecidable} undecidable pixels");
 }
+
+/// A lamp within the on-surface bound of a surface but off it (the bound grows with
+/// the frame's lengths: a plane given by a point far along it, a lamp far from the
+/// eye) is decided by the side it lies on, not as if it lay on the surface: a ceiling
+/// under the lamp shades everything below it, and a lamp just inside an opaque sphere
+/// lights nothing outside. Each picture must equal the same scene with the lamp's
+/// intensity 0 (before: 51,460, 52,390 and 52,771 of 57,600 pixels lit through), and
+/// the ceiling given by a far point must draw as the one given by a near point.
+#[test]
+fn a_lamp_off_a_surface_within_the_bound_is_on_its_side() {
+    let scene = |lamp: [f32; 3], intensity: f32, extra: &str| {
+        format!(
+            "background = [24, 34, 56]\nambient = 0.12\nshadows = true\n\
+             [camera]\neye = [0.0, 3.0, 6.8]\nlook_at = [0.0, 0.5, 0.3]\nfov_y_deg = 45.0\n\
+             width = 96\nheight = 96\n\
+             [[light]]\ntype = \"point\"\nposition = [{:?}, {:?}, {:?}]\nintensity = {intensity:?}\n\
+             [[sphere]]\ncenter = [0.0, 1.0, 0.0]\nradius = 1.0\ncolor = [230, 60, 50]\n\
+             [[plane]]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\n\
+             color = [225, 225, 215]\nchecker = [70, 70, 80]\n{extra}",
+            lamp[0], lamp[1], lamp[2]
+        )
+    };
+    let ceiling = |y: f32, x: f32| {
+        format!(
+            "[[plane]]\npoint = [{x:?}, {y:?}, 0.0]\nnormal = [0.0, -1.0, 0.0]\ncolor = [200, 200, 200]\n"
+        )
+    };
+    let shade = |gap: f32| {
+        format!(
+            "[[sphere]]\ncenter = [3.0, {:?}, 3.5]\nradius = 1.0\ncolor = [90, 90, 90]\n",
+            3.5 + 1.0 + gap
+        )
+    };
+    let draw = |text: &str| {
+        let file: FullSceneFile =
+            embedded_raytracer::scene_file::parse(text).unwrap_or_else(|e| panic!("{e}"));
+        pixels(&file.scene, &file.camera, CONVEX, Sampling::Center)
+    };
+    let cases = [
+        // A ceiling 4 under the lamp, given by a point 10¹⁰ along it.
+        ([0.0, 9.0, 0.0], ceiling(5.0, 1e10)),
+        // A lamp 10⁶ up, 10 above a ceiling.
+        ([0.0, 1e6, 0.0], ceiling(999_990.0, 0.0)),
+        // A lamp 10⁻⁴ and 10⁻⁵ inside an opaque sphere, near its bottom.
+        ([3.0, 3.5, 3.5], shade(-1e-4)),
+        ([3.0, 3.5, 3.5], shade(-1e-5)),
+    ];
+    for (lamp, extra) in &cases {
+        let lit = draw(&scene(*lamp, 1.0, extra));
+        let off = draw(&scene(*lamp, 0.0, extra));
+        assert_eq!(differ(&lit, &off), 0, "lamp {lamp:?} with {extra}");
+    }
+    let near = draw(&scene([0.0, 9.0, 0.0], 1.0, &ceiling(5.0, 0.0)));
+    let far = draw(&scene([0.0, 9.0, 0.0], 1.0, &ceiling(5.0, 1e10)));
+    assert_eq!(differ(&near, &far), 0);
+}

@@ -17,6 +17,7 @@ use crate::trace::lit::consts::{FramePlane, LitSphere};
 use crate::trace::lit::exit::far_root;
 use crate::trace::lit::object::ObjectId;
 use crate::trace::lit::shadow::ShadowRay;
+use crate::trace::lit::ties::Near;
 
 /// The frame's objects and their coincident twins, for the exact paths
 /// ([`closest_twins`], [`occluded_exact`]).
@@ -157,12 +158,12 @@ pub(super) fn closest_twins<T: TestStrategy, Q: SqrtFn>(
 /// it is.
 #[derive(Clone, Copy)]
 pub(super) struct Lamp<'a> {
-    /// Per sphere: the lamp lies on it ([`Ties`]).
+    /// Per sphere: whether, and on which side, the lamp lies on it ([`Ties`]).
     ///
     /// [`Ties`]: crate::trace::lit::ties::Ties
-    pub(super) on_sphere: &'a [bool],
-    /// Per plane: the lamp lies on it.
-    pub(super) on_plane: &'a [bool],
+    pub(super) on_sphere: &'a [Near],
+    /// Per plane: the same.
+    pub(super) on_plane: &'a [Near],
     /// The lamp's position (eye-relative, scaled).
     pub(super) at: Vec3,
 }
@@ -195,17 +196,28 @@ pub(super) fn occluded_exact<T: TestStrategy, Q: SqrtFn>(
         } else {
             lamp.on_plane.get(k.index() - n)
         };
-        let blocked = match (on.copied().unwrap_or(false), objects.spheres.get(k.index())) {
-            // A plane through the lamp meets the segment only at its open end; the
-            // surface the ray leaves is never met again before the lamp on it.
-            (true, None) => false,
-            (true, Some(_)) if !objects.tests_self && k == from => false,
-            // The lamp on the sphere: the line meets it at the lamp and 2σ before.
-            (true, Some(s)) => {
-                let two_sigma = 2.0 * (lamp.at - s.geom.l).dot(ray.l);
-                two_sigma > 0.0 && two_sigma < ray.dist
+        let near = on.copied().unwrap_or(Near::Off);
+        let blocked = match (near, objects.spheres.get(k.index())) {
+            (Near::Off, _) => objects.blocks::<Q>(k, ray),
+            // The surface the ray leaves is never met again before the lamp on it.
+            (_, _) if !objects.tests_self && k == from => false,
+            // A plane the lamp lies on (within the bound): the signs at the two ends; a
+            // plane through the lamp meets the segment only at its open end.
+            (side, None) => {
+                let plane = objects.planes.get(k.index() - n);
+                let h = plane.map_or(0.0, |p| (ray.o - p.q).dot(p.n));
+                (side == Near::Neg && h > 0.0) || (side == Near::Pos && h < 0.0)
             }
-            (false, _) => objects.blocks::<Q>(k, ray),
+            // The lamp on the sphere: the line meets it at the lamp and 2σ before; from
+            // the outside side, it enters just before a lamp inside.
+            (side, Some(s)) => {
+                let two_sigma = 2.0 * (lamp.at - s.geom.l).dot(ray.l);
+                if two_sigma > 0.0 {
+                    two_sigma < ray.dist
+                } else {
+                    side == Near::Neg && s.geom.seen_from(ray.o).c > 0.0
+                }
+            }
         };
         if blocked {
             return true;

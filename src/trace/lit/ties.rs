@@ -10,6 +10,33 @@ use crate::trace::lit::object::ObjectId;
 /// lengths: `2⁻¹⁶` (see [`Ties`]).
 const ON_SURFACE: f64 = 1.0 / 65_536.0;
 
+/// Where a point light lies against a surface ([`Ties`]): beyond the bound (`Off`), or
+/// within it, on the side the `f64` sign of its offset says — inside the sphere or
+/// below the plane (`Neg`, against the plane's normal), exactly on it (`On`), outside
+/// or above (`Pos`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Near {
+    Off,
+    Neg,
+    On,
+    Pos,
+}
+
+impl Near {
+    /// Within the bound of `bound` at the signed offset `h` (its sign decides the side).
+    fn of(h: f64, bound: f64) -> Self {
+        if !(h.abs() <= bound) {
+            Near::Off
+        } else if h < 0.0 {
+            Near::Neg
+        } else if h > 0.0 {
+            Near::Pos
+        } else {
+            Near::On
+        }
+    }
+}
+
 /// The frame's exact ties between objects, decided once per frame.
 ///
 /// They are decided in `f64` from the scene's own `f32` values (not from the rounded
@@ -26,17 +53,21 @@ const ON_SURFACE: f64 = 1.0 / 65_536.0;
 ///   256u·S`: a lamp farther from the surface than the bound is decided by the roots,
 ///   clear of the coin toss (origins farther out carry a rounding that grows with
 ///   their distance, as the reference's shadow band does). Within the bound the
-///   segment is decided by the side it reaches the lamp from, with no root near
-///   `dist`:
-///   - a plane through the lamp never blocks (the segment meets it only at its open
-///     end);
+///   segment is decided by the side it reaches the lamp from and by the side of the
+///   surface the lamp is on ([`Near`]: the sign of its offset in `f64`, wrong only
+///   for a lamp within the `f64` rounding of the surface), with no root near `dist`:
+///   - a plane blocks iff the lamp lies off it and the segment's origin on the other
+///     side (the signs at the two ends; the origin's in the frame's `f32`, exact
+///     unless it lies within rounding of the plane); a plane through the lamp never
+///     blocks (the segment meets it only at its open end);
 ///   - the line through the lamp meets the sphere at the lamp and at `2σ` before it,
 ///     `σ = (P − C)·l` (`l` the unit direction toward the lamp): the segment is inside
 ///     the sphere just before the lamp iff `σ > 0`, and then blocked iff the other
 ///     root lies on it, `0 < 2σ < dist`. From the outside side (`σ ≤ 0`) the sphere
-///     does not block; a segment from within the sphere (`2σ ≥ dist`, e.g. from its
-///     own inner surface) does not either. A lamp inside a sphere (farther than the
-///     bound from it) is decided by the roots, as any occluder.
+///     blocks only a lamp inside it, and only a segment from outside it (the segment
+///     enters just before the lamp); a segment from within the sphere (`2σ ≥ dist`,
+///     e.g. from its own inner surface) never does. A lamp inside a sphere farther
+///     than the bound from it is decided by the roots, as any occluder.
 /// - **Coincident objects.** A sphere with the same centre and radius bits as a
 ///   lower-numbered one (a plane with the same point and normal bits) is the same
 ///   surface: every test computes the same bits for both, so a primary ray shows the
@@ -51,10 +82,11 @@ const ON_SURFACE: f64 = 1.0 / 65_536.0;
 /// [`LitRow::shadowed`]: crate::trace::lit::row::LitRow::shadowed
 #[derive(PartialEq)]
 pub(super) struct Ties<const N: usize, const L: usize, const P: usize> {
-    /// Per light (the frame's numbering) and sphere: the lamp lies on it.
-    pub(super) on_sphere: [[bool; N]; L],
-    /// Per light and plane: the lamp lies on it.
-    pub(super) on_plane: [[bool; P]; L],
+    /// Per light (the frame's numbering) and sphere: whether, and on which side, the
+    /// lamp lies on it.
+    pub(super) on_sphere: [[Near; N]; L],
+    /// Per light and plane: the same.
+    pub(super) on_plane: [[Near; P]; L],
     /// Per sphere: the lowest-numbered sphere identical to it (itself if none).
     pub(super) sphere_twin: [ObjectId; N],
     /// Per plane: the object number of the lowest-numbered identical plane.
@@ -109,8 +141,8 @@ impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
                 twins |= j != k;
             }
         }
-        let mut on_sphere = [[false; N]; L];
-        let mut on_plane = [[false; P]; L];
+        let mut on_sphere = [[Near::Off; N]; L];
+        let mut on_plane = [[Near::Off; P]; L];
         let usable = scene.lights().iter().filter(|l| match **l {
             Light::Directional { direction, .. } => direction.try_normalize().is_some(),
             Light::Point { .. } => true,
@@ -125,8 +157,8 @@ impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
                 for (flag, s) in row.iter_mut().zip(spheres) {
                     let (c, r) = (v(s.center), f64::from(s.radius));
                     let gap = len(sub(at, c)) - r;
-                    *flag = gap.abs() <= ON_SURFACE * (pe + len(sub(c, e)) + r);
-                    on |= *flag;
+                    *flag = Near::of(gap, ON_SURFACE * (pe + len(sub(c, e)) + r));
+                    on |= *flag != Near::Off;
                 }
                 for (flag, p) in prow.iter_mut().zip(planes) {
                     let Some(n) = p.normal.try_normalize() else {
@@ -134,8 +166,8 @@ impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
                     };
                     let q = v(p.point);
                     let h = dot(sub(at, q), v(n));
-                    *flag = h.abs() <= ON_SURFACE * (pe + len(sub(q, e)));
-                    on |= *flag;
+                    *flag = Near::of(h, ON_SURFACE * (pe + len(sub(q, e))));
+                    on |= *flag != Near::Off;
                 }
             }
             *exact = on || twins;

@@ -116,8 +116,15 @@ impl FramePlane {
     /// [`UNIT_ROUNDOFF`]: crate::math::UNIT_ROUNDOFF
     #[inline(always)]
     pub(super) fn separates(&self, o: Vec3, at: Vec3) -> bool {
-        let (h, side) = ((o - self.q).dot(self.n), (at - self.q).dot(self.n));
+        let (h, side) = (self.height(o), self.height(at));
         (h < 0.0 && side > 0.0) || (h > 0.0 && side < 0.0)
+    }
+
+    /// The plane's equation at `x` (eye-relative, scaled): `(x − q)·n`, whose sign says
+    /// the side (positive along the normal), with [`Self::separates`]' rounding.
+    #[inline(always)]
+    pub(super) fn height(&self, x: Vec3) -> f32 {
+        (x - self.q).dot(self.n)
     }
 
     /// The colour at `p` (eye-relative, scaled): the checker cell's.

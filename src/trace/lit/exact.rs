@@ -204,8 +204,7 @@ pub(super) fn occluded_exact<T: TestStrategy, Q: SqrtFn>(
             // A plane the lamp lies on (within the bound): the signs at the two ends; a
             // plane through the lamp meets the segment only at its open end.
             (side, None) => {
-                let plane = objects.planes.get(k.index() - n);
-                let h = plane.map_or(0.0, |p| (ray.o - p.q).dot(p.n));
+                let h = objects.planes.get(k.index() - n).map_or(0.0, |p| p.height(ray.o));
                 (side == Near::Neg && h > 0.0) || (side == Near::Pos && h < 0.0)
             }
             // The lamp on the sphere: the line meets it at the lamp and 2σ before; from

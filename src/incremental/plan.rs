@@ -133,7 +133,7 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         }
         let changed = |k: usize| shown.changed(scene, k);
         let any_changed = (0..scene.spheres().len()).any(changed);
-        if any_changed && features && !same_ties(&shown.scene, scene, camera.eye()) {
+        if any_changed && features && !same_ties(&shown.scene, scene, camera.eye(), scale.0) {
             return full();
         }
         let pad = match render.sampling() {

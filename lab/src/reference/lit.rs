@@ -42,11 +42,14 @@
 //!   `l·n` within `e_l + POINT_ULPS·u` of 0. The surface `p` lies on is treated exactly:
 //!   a plane cannot block a ray leaving it; a sphere blocks it only if the ray goes into
 //!   it, at the chord `s = 2·(c − p)·l̂`, known to `2·(e_p + POINT_ULPS·u·(|c| + |p|) +
-//!   r·e_l)`. A point light on a surface ([`ON_SURFACE`]) ends the segment on that
-//!   surface, open there: a plane through it never blocks; a sphere through it blocks
-//!   iff `0 < 2σ < dist` (`σ = (light − c)·l`, the line's other root `2σ` before the
-//!   light), undecidable when `2σ` is within `2·(e_p + POINT_ULPS·u·(|c| + |p| + r +
-//!   |light|) + r·e_l)` of 0 or `dist`. An object with a lower-numbered twin (the
+//!   r·e_l)`. A point light on or near a surface ([`ON_SURFACE`]) is decided without
+//!   a root near the light: a plane through it never blocks; a sphere through it
+//!   blocks iff `0 < 2σ < dist` (`σ = (light − c)·l`, the line's other root `2σ` before
+//!   the light), a sphere around it iff `p` is outside it, a sphere it lies outside
+//!   iff the segment reaches the root nearest the light, `σ − √(σ² − g)` (`g` from the
+//!   light's gap); each undecidable when `σ` and `dist` moved by `e_σ = e_p +
+//!   POINT_ULPS·u·(|c| + |p| + r + |light|) + r·e_l` decide otherwise (the sphere
+//!   around it: when `p` is within rounding of it). An object with a lower-numbered twin (the
 //!   same centre and radius, or point and normal) is never met: coincident objects are
 //!   one surface, the lower index's.
 //! - **A reflected ray** starts at `p` (error `e_p`) with direction error
@@ -216,14 +219,15 @@ pub struct RefScene {
 /// A point light lies on a surface within `2⁻¹⁶` of the frame's lengths: on sphere
 /// `(C, r)` when `| |P − C| − r | ≤ 2⁻¹⁶·(|P − E| + |C − E| + r)`, on a plane through
 /// `Q` with unit normal `n` when `|(P − Q)·n| ≤ 2⁻¹⁶·(|P − E| + |Q − E|)` (`E` the
-/// eye). The shadow segment toward such a lamp ends on that surface and is open there:
-/// a plane exactly through the lamp (in `f64`) never blocks it, one the lamp lies off
-/// blocks it iff the segment's ends are on opposite sides; a sphere through it blocks
-/// it iff the segment reaches the lamp from the sphere's inside and enters it on the
-/// way, i.e. `0 < 2σ < dist` with `σ = (P − C)·l` (the line meets the sphere at the
-/// lamp and `2σ` before it), or reaches a lamp inside it (`|P − C| < r`) from the
-/// outside side (`σ ≤ 0`) from a point outside it. The kernel decides these pairs by
-/// the same rule.
+/// eye). Such a pair is decided without a root near the lamp, whose rounding in the
+/// kernel exceeds the gap: a plane exactly through the lamp (in `f64`) never blocks
+/// the segment (open at the lamp), one the lamp lies off blocks it iff the segment's
+/// ends are on opposite sides; a sphere exactly through the lamp blocks it iff `0 < 2σ
+/// < dist` with `σ = (P − C)·l` (the line meets the sphere at the lamp and `2σ` before
+/// it); a sphere around the lamp blocks it iff the segment starts outside the sphere;
+/// a sphere the lamp lies outside blocks it iff the segment reaches the line's root
+/// nearest the lamp, `σ − √(σ² − g)` with `g = |P − C|² − r²` taken from the lamp's
+/// gap. The kernel decides these pairs by the same geometry.
 pub const ON_SURFACE: f64 = 1.0 / 65_536.0;
 
 /// Whether lamp `p` lies on sphere `(c, r)` seen from `eye` ([`ON_SURFACE`]).
@@ -753,19 +757,35 @@ fn shadow(
                 // A chord of its own sphere ends at the lamp on it: open there.
                 (false, false)
             } else {
-                // The line meets the sphere at the lamp and 2σ before it; from the
-                // outside side it enters just before a lamp inside the sphere, which
-                // blocks a segment from outside it.
-                let two_sigma = 2.0 * (at - c).dot(l);
-                let err = 2.0 * (e_p + ROUND * (c.length() + p.length() + r + light_size) + r * e_l);
-                let doubt = two_sigma.abs() <= err || (two_sigma - dist).abs() <= err;
-                if two_sigma <= 0.0 && (at - c).length() < r {
+                let lamp_gap = (at - c).length() - r;
+                let sigma = (at - c).dot(l);
+                let err = e_p + ROUND * (c.length() + p.length() + r + light_size) + r * e_l;
+                if lamp_gap < 0.0 {
+                    // A lamp inside: the segment crosses the sphere iff it starts
+                    // outside it.
                     let gap = (p - c).length() - r;
                     (
                         gap > 0.0,
-                        doubt || gap.abs() <= e_p + ROUND * (c.length() + p.length() + r),
+                        gap.abs() <= e_p + ROUND * (c.length() + p.length() + r),
                     )
+                } else if lamp_gap > 0.0 {
+                    // A lamp outside: the segment reaches the line's root nearest the
+                    // lamp, s₋ = σ − √(σ² − g) with g = |P − C|² − r² (from the gap:
+                    // no cancellation); blocked grows with σ and with dist, so the
+                    // decision is in doubt iff the ends of their error intervals
+                    // decide otherwise.
+                    let g = lamp_gap * (lamp_gap + 2.0 * r);
+                    let reaches = |sigma: f64, dist: f64| {
+                        let disc = sigma * sigma - g;
+                        sigma > 0.0 && disc >= 0.0 && g < dist * (sigma + disc.sqrt())
+                    };
+                    let lo = reaches(sigma - err, dist - err);
+                    (reaches(sigma, dist), lo != reaches(sigma + err, dist + err))
                 } else {
+                    // Through the lamp: the line meets the sphere at the lamp and 2σ
+                    // before it.
+                    let two_sigma = 2.0 * sigma;
+                    let doubt = two_sigma.abs() <= 2.0 * err || (two_sigma - dist).abs() <= 2.0 * err;
                     (two_sigma > 0.0 && two_sigma < dist, doubt)
                 }
             }

@@ -162,7 +162,11 @@ pub(super) struct Lamp<'a> {
     ///
     /// [`Ties`]: crate::trace::lit::ties::Ties
     pub(super) on_sphere: &'a [Near],
-    /// Per plane: the same.
+    /// Per sphere: `g = |P − C|² − r²` for a lamp within the bound outside it ([`Ties`]).
+    ///
+    /// [`Ties`]: crate::trace::lit::ties::Ties
+    pub(super) sphere_g: &'a [f32],
+    /// Per plane: the same as `on_sphere`.
     pub(super) on_plane: &'a [Near],
     /// The lamp's position (eye-relative, scaled).
     pub(super) at: Vec3,
@@ -207,15 +211,20 @@ pub(super) fn occluded_exact<T: TestStrategy, Q: SqrtFn>(
                 let h = objects.planes.get(k.index() - n).map_or(0.0, |p| p.height(ray.o));
                 (side == Near::Neg && h > 0.0) || (side == Near::Pos && h < 0.0)
             }
-            // The lamp on the sphere: the line meets it at the lamp and 2σ before; from
-            // the outside side, it enters just before a lamp inside.
-            (side, Some(s)) => {
+            // A lamp inside the sphere: the segment crosses it iff it starts outside.
+            (Near::Neg, Some(s)) => s.geom.seen_from(ray.o).c > 0.0,
+            // A lamp outside: walked back from the lamp, the line meets the sphere at
+            // s = σ ± √(σ² − g); blocked iff the near root g/(σ + √(σ² − g)) < dist.
+            (Near::Pos, Some(s)) => {
+                let sigma = (lamp.at - s.geom.l).dot(ray.l);
+                let g = lamp.sphere_g.get(k.index()).copied().unwrap_or(0.0);
+                let disc = sigma * sigma - g;
+                sigma > 0.0 && disc >= 0.0 && g < ray.dist * (sigma + Q::sqrt(disc))
+            }
+            // The lamp on the sphere: the line meets it at the lamp and 2σ before.
+            (_, Some(s)) => {
                 let two_sigma = 2.0 * (lamp.at - s.geom.l).dot(ray.l);
-                if two_sigma > 0.0 {
-                    two_sigma < ray.dist
-                } else {
-                    side == Near::Neg && s.geom.seen_from(ray.o).c > 0.0
-                }
+                two_sigma > 0.0 && two_sigma < ray.dist
             }
         };
         if blocked {

@@ -251,7 +251,7 @@ fn render_with<
             let _ = lights.push(fl);
         }
     }
-    let ties = Ties::new(scene, eye);
+    let ties = Ties::new(scene, eye, frame.scale.0);
     let size = camera.size();
     let d_max = f64::from(camera.first_direction().length())
         + f64::from(size.width) * f64::from(camera.pixel_step().length())

@@ -148,8 +148,9 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
     #[inline(never)]
     fn occluded_exact(&self, light: usize, ray: ShadowRay, far: bool) -> bool {
         let f = self.f;
-        let (Some(on_sphere), Some(on_plane), Some(at)) = (
+        let (Some(on_sphere), Some(sphere_g), Some(on_plane), Some(at)) = (
             f.ties.on_sphere.get(light),
+            f.ties.sphere_g.get(light),
             f.ties.on_plane.get(light),
             f.lights.get(light).map(FrameLight::at),
         ) else {
@@ -163,6 +164,7 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
             &objects,
             Lamp {
                 on_sphere,
+                sphere_g,
                 on_plane,
                 at,
             },

@@ -60,14 +60,22 @@ impl Near {
 ///     side (the signs at the two ends; the origin's in the frame's `f32`, exact
 ///     unless it lies within rounding of the plane); a plane through the lamp never
 ///     blocks (the segment meets it only at its open end);
-///   - the line through the lamp meets the sphere at the lamp and at `2σ` before it,
-///     `σ = (P − C)·l` (`l` the unit direction toward the lamp): the segment is inside
-///     the sphere just before the lamp iff `σ > 0`, and then blocked iff the other
-///     root lies on it, `0 < 2σ < dist`. From the outside side (`σ ≤ 0`) the sphere
-///     blocks only a lamp inside it, and only a segment from outside it (the segment
-///     enters just before the lamp); a segment from within the sphere (`2σ ≥ dist`,
-///     e.g. from its own inner surface) never does. A lamp inside a sphere farther
-///     than the bound from it is decided by the roots, as any occluder.
+///   - a sphere through the lamp (its `f64` offset exactly 0): the line meets it at
+///     the lamp and at `2σ` before it, `σ = (P − C)·l` (`l` the unit direction toward
+///     the lamp); the segment is inside the sphere just before the lamp iff `σ > 0`,
+///     and then blocked iff the other root lies on it, `0 < 2σ < dist`;
+///   - a lamp inside the sphere: blocked iff the segment's origin is outside it (the
+///     sign of `|o − C|² − r²` in the frame's `f32`, exact unless `o` lies within
+///     rounding of the sphere, e.g. on it: the surface the ray leaves never blocks);
+///   - a lamp outside it: the line, walked back from the lamp, meets the sphere at
+///     `s = σ ± √(σ² − g)` with `g = |P − C|² − r² > 0` kept from `f64` (its `f32`
+///     rounding moves the near root by at most `2⁻²³` of itself), and the segment is
+///     blocked iff it reaches the near root, `σ > 0`, `σ² ≥ g` and
+///     `g/(σ + √(σ² − g)) < dist` (no cancellation: `g` is never formed from the
+///     frame's rounded ends, whose error exceeds it);
+///
+///   a lamp farther than the bound from a sphere is decided by the roots, as any
+///   occluder.
 /// - **Coincident objects.** A sphere with the same centre and radius bits as a
 ///   lower-numbered one (a plane with the same point and normal bits) is the same
 ///   surface: every test computes the same bits for both, so a primary ray shows the
@@ -85,6 +93,9 @@ pub(super) struct Ties<const N: usize, const L: usize, const P: usize> {
     /// Per light (the frame's numbering) and sphere: whether, and on which side, the
     /// lamp lies on it.
     pub(super) on_sphere: [[Near; N]; L],
+    /// Per light and sphere, for a lamp within the bound outside it ([`Near::Pos`]):
+    /// `g = |P − C|² − r²` in the frame's scaled units, from `f64` (0 otherwise).
+    pub(super) sphere_g: [[f32; N]; L],
     /// Per light and plane: the same.
     pub(super) on_plane: [[Near; P]; L],
     /// Per sphere: the lowest-numbered sphere identical to it (itself if none).
@@ -100,13 +111,13 @@ pub(super) struct Ties<const N: usize, const L: usize, const P: usize> {
 }
 
 impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
-    /// The ties of `scene` seen from `eye`, and each light's `exact` flag (the frame's
-    /// lights: the scene's in order, less the unusable ones).
+    /// The ties of `scene` seen from `eye` at the frame's `scale`, and each light's
+    /// `exact` flag (the frame's lights: the scene's in order, less the unusable ones).
     ///
     /// Once per frame, out of line.
     #[cold]
     #[inline(never)]
-    pub(super) fn new<const D: usize>(scene: &Scene<N, L, P, D>, eye: Vec3) -> Self {
+    pub(super) fn new<const D: usize>(scene: &Scene<N, L, P, D>, eye: Vec3, scale: f32) -> Self {
         let v = |a: Vec3| [f64::from(a.x), f64::from(a.y), f64::from(a.z)];
         let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
         let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -143,21 +154,32 @@ impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
         }
         let mut on_sphere = [[Near::Off; N]; L];
         let mut on_plane = [[Near::Off; P]; L];
+        let mut sphere_g = [[0.0; N]; L];
+        let scale = f64::from(scale);
         let usable = scene.lights().iter().filter(|l| match **l {
             Light::Directional { direction, .. } => direction.try_normalize().is_some(),
             Light::Point { .. } => true,
         });
         let mut exact = [false; L];
         let mut any = false;
-        for (((light, exact), row), prow) in usable.zip(&mut exact).zip(&mut on_sphere).zip(&mut on_plane) {
+        let lights = usable
+            .zip(&mut exact)
+            .zip(&mut on_sphere)
+            .zip(&mut sphere_g)
+            .zip(&mut on_plane);
+        for ((((light, exact), row), grow), prow) in lights {
             let mut on = false;
             if let Light::Point { position, .. } = *light {
                 let at = v(position);
                 let pe = len(sub(at, e));
-                for (flag, s) in row.iter_mut().zip(spheres) {
-                    let (c, r) = (v(s.center), f64::from(s.radius));
+                for ((flag, g), sphere) in row.iter_mut().zip(grow.iter_mut()).zip(spheres) {
+                    let (c, r) = (v(sphere.center), f64::from(sphere.radius));
                     let gap = len(sub(at, c)) - r;
                     *flag = Near::of(gap, ON_SURFACE * (pe + len(sub(c, e)) + r));
+                    if *flag == Near::Pos {
+                        // |P − C|² − r², scaled: exact powers of two, rounded once.
+                        *g = ((gap * scale) * ((gap + 2.0 * r) * scale)) as f32;
+                    }
                     on |= *flag != Near::Off;
                 }
                 for (flag, p) in prow.iter_mut().zip(planes) {
@@ -175,6 +197,7 @@ impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
         }
         Self {
             on_sphere,
+            sphere_g,
             on_plane,
             sphere_twin,
             plane_twin,
@@ -204,8 +227,9 @@ impl<const N: usize, const L: usize, const P: usize> Ties<N, L, P> {
     }
 }
 
-/// Whether two scenes seen from `eye` have the same [`Ties`], the frame-wide part of a
-/// features frame that a moved sphere can change besides its own pixels.
+/// Whether two scenes seen from `eye` at the frame's `scale` have the same [`Ties`],
+/// the frame-wide part of a features frame that a moved sphere can change besides its
+/// own pixels (a moved sphere near a lamp changes its `g`: the whole frame is drawn).
 ///
 /// The ties (a lamp lying on a surface, coincident objects) choose every row's shadow
 /// test: where they are equal, every row takes the same path in both scenes.
@@ -213,6 +237,7 @@ pub(crate) fn same_ties<const N: usize, const L: usize, const P: usize, const D:
     a: &Scene<N, L, P, D>,
     b: &Scene<N, L, P, D>,
     eye: Vec3,
+    scale: f32,
 ) -> bool {
-    Ties::new(a, eye) == Ties::new(b, eye)
+    Ties::new(a, eye, scale) == Ties::new(b, eye, scale)
 }

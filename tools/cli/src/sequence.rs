@@ -53,7 +53,18 @@ pub fn at_frame(
             .map_err(|e| format!("{}: --size {}x{}: {e}", path.display(), size.width, size.height))?;
     }
     let mut moved = Box::new(file.clone());
-    let t = frame_time(frame, fps.unwrap_or(file.animation.fps()));
+    let rate = fps.unwrap_or(file.animation.fps());
+    let t = frame_time(frame, rate);
+    if !t.is_finite() {
+        // The moment itself is out of range: the rate is to blame, not the motions.
+        let source = if fps.is_some() { "--fps" } else { "animation.fps" };
+        return Err(format!(
+            "{}: {source}: {rate:?} frames a second is too few: frame {}'s moment, \
+             {frame}/{rate:?} s, is beyond what f32 holds",
+            path.display(),
+            u64::from(frame) + 1
+        ));
+    }
     let mut params = base;
     file.animation
         .apply(&file.scene, &base, t, &mut moved.scene, &mut params)
@@ -313,11 +324,21 @@ pub fn run(args: &Args) -> Result<(), String> {
         }
         last.ok_or_else(|| "no scene file given".to_string())
     };
+    let digits = count.to_string().len().max(4);
+    if let (Some(output), Some(dir)) = (&apng, &args.output_frames) {
+        // The animation is written last: over a frame of its own, it would replace it.
+        if let Some(k) = (1..=count).find(|k| same_place(output, &dir.join(format!("{k:0digits$}.png")))) {
+            return Err(format!(
+                "{}: --output: it is also frame {k} of --output-frames {}; give it another name",
+                output.display(),
+                dir.display()
+            ));
+        }
+    }
     let apng = match apng {
         Some(output) => Some((check_output(&output)?, output)),
         None => None,
     };
-    let digits = count.to_string().len().max(4);
     let mut frame_outputs = Vec::new();
     if let Some(dir) = &args.output_frames {
         make_directory(dir)?;
@@ -439,6 +460,22 @@ pub fn run(args: &Args) -> Result<(), String> {
         writeln!(io::stdout(), "{summary}")
     };
     Ok(())
+}
+
+/// Whether paths `a` and `b` name the same file: the same name in the same directory
+/// (resolved through links where it exists, made absolute where it does not yet).
+fn same_place(a: &Path, b: &Path) -> bool {
+    let key = |p: &Path| {
+        let parent = p
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let parent = fs::canonicalize(parent)
+            .or_else(|_| std::path::absolute(parent))
+            .ok();
+        (parent, p.file_name().map(ToOwned::to_owned))
+    };
+    a != Path::new("-") && key(a) == key(b)
 }
 
 /// `dir`, made if missing (its parent must exist), refused if it is not a directory.

@@ -1766,6 +1766,8 @@ fn bad_sequences_exit_2_and_write_nothing() {
     let frames_dir = dir.join("frames");
     let frames_s = frames_dir.to_str().unwrap();
     let out_s = out.to_str().unwrap();
+    let first_frame = frames_dir.join("0002.png");
+    let first_frame_s = first_frame.to_str().unwrap();
     for (args, expect) in [
         (
             vec![zero, "--frames", "3", "--output", out_s],
@@ -1798,6 +1800,22 @@ fn bad_sequences_exit_2_and_write_nothing() {
         (
             vec![good, "--fps", "0", "--frames", "2", "--output", out_s],
             "--fps: expected a positive finite number",
+        ),
+        (
+            vec![good, "--fps", "1e-40", "--frames", "3", "--output", out_s],
+            "--fps: 1e-40 frames a second is too few: frame 2's moment",
+        ),
+        (
+            vec![
+                good,
+                "--frames",
+                "3",
+                "--output",
+                first_frame_s,
+                "--output-frames",
+                frames_s,
+            ],
+            "0002.png: --output: it is also frame 2 of --output-frames",
         ),
         (
             vec![good, "--frame", "0", "--output", out_s],

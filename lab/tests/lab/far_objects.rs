@@ -591,3 +591,46 @@ fn the_far_plane_under_a_near_lamp_is_in_no_shadow() {
     assert!(px.seen > 15_000, "{px:?}");
     assert_eq!((px.darker, px.unlike_alone), (0, 0), "{px:?}");
 }
+
+/// The same far plane seen from an eye far from the scene: the issue's scene seen from
+/// 10⁶, 3·10⁵, 10⁵ and 3·10⁴ away, the tilted plane 500 times as far beyond it. The
+/// lamp is then far from the eye too, and `2¹⁰·|P|` exceeds every segment: tested from
+/// its own points, whose rounding exceeds the spheres' radii, the plane seen from 10⁵
+/// lay in false shadows (52 of its 19,200 pixels; from 3·10⁵ on, the lamp lies within
+/// the on-surface bound of every object, whose side and roots decide). The segments
+/// longer than `2¹⁶` smallest radii are tested from the lamp: the picture is the plane
+/// alone under the same light, bit for bit.
+#[test]
+fn the_far_plane_seen_from_far_away_is_in_no_shadow() {
+    let spheres = "[[sphere]]\ncenter = [0.0, 1.0, 0.0]\nradius = 1.0\ncolor = [230, 60, 50]\n\
+                   [[sphere]]\ncenter = [-2.0, 0.6, 0.9]\nradius = 0.6\ncolor = [60, 200, 90]\n\
+                   [[sphere]]\ncenter = [1.6, 1.45, 0.5]\nradius = 0.5\ncolor = [70, 110, 240]\n\
+                   [[sphere]]\ncenter = [0.9, 0.35, 2.0]\nradius = 0.35\ncolor = [240, 210, 60]\n\
+                   [[plane]]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\n\
+                   color = [225, 225, 215]\nchecker = [70, 70, 80]\n";
+    for eye in [1e6f32, 3e5, 1e5, 3e4] {
+        let text = |near: &str| {
+            format!(
+                "background = [24, 34, 56]\nambient = 0.12\nshadows = true\n\
+                 [camera]\neye = [0.0, 2.2, {eye:?}]\nlook_at = [0.0, {:?}, 0.0]\nfov_y_deg = 45.0\n\
+                 width = 160\nheight = 120\n\
+                 [[light]]\ntype = \"point\"\nposition = [3.0, 4.5, 3.5]\nintensity = 0.8\n\
+                 [[plane]]\npoint = [0.0, 0.0, {:?}]\nnormal = [0.0, 0.3, 1.0]\ncolor = [200, 180, 160]\n{near}",
+                eye / 2.0,
+                -500.0 * eye
+            )
+        };
+        let draw = |text: &str| {
+            let file: FullSceneFile =
+                embedded_raytracer::scene_file::parse(text).unwrap_or_else(|e| panic!("{e}"));
+            trace(Full::new(&file.scene, &file.camera))
+        };
+        let (got, want) = (draw(&text(spheres)), draw(&text("")));
+        // The colours: the plane's object number differs without the near objects.
+        let plane = want.iter().filter(|w| w.1 != Rgb888::new(24, 34, 56)).count();
+        let apart = got.iter().zip(&want).filter(|(a, b)| a.1 != b.1).count();
+        println!("eye {eye:e}: {plane} plane pixels, {apart} apart");
+        assert!(plane > 15_000, "eye {eye:e}: {plane} plane pixels");
+        assert_eq!(apart, 0, "eye {eye:e}");
+    }
+}

@@ -168,7 +168,8 @@ pub(super) enum FrameLight {
     /// Unit vector toward the light.
     Directional { l: Vec3, intensity: f32 },
     /// Eye-relative, scaled position; `far`: the shadow segment's length beyond which
-    /// it is tested from the lamp ([`FAR_FACTOR`] times `|p|`).
+    /// it is tested from the lamp ([`FAR_FACTOR`] times `|p|`, at most [`RADII_FACTOR`]
+    /// times the smallest radius).
     Point { p: Vec3, intensity: f32, far: f32 },
 }
 
@@ -190,9 +191,23 @@ pub(super) enum FrameLight {
 /// lamp end and keeps the tests from `o`.
 pub(super) const FAR_FACTOR: f32 = 1024.0;
 
+/// How many times the frame's smallest sphere radius a shadow segment must exceed before
+/// it is tested from the lamp's end, whatever the lamp's distance from the eye: `2¹⁶`.
+///
+/// With the eye far from the scene the lamp is far too, and [`FAR_FACTOR`]`·|P|` may
+/// exceed every segment: a surface `2⁹·|P|` away would be tested from its own points,
+/// whose rounding `u·|o|` exceeds the radii of the spheres near the lamp (false
+/// shadows over the whole surface). A segment longer than `2¹⁶·r` starts at a point
+/// whose rounding is at least `2⁻⁸·r`; from the lamp the line is known to the same
+/// bound as above, never more than a few times `o`'s. A scene whose lamp lies within
+/// `2⁶` smallest radii of the eye keeps [`FAR_FACTOR`]'s limit and its bits.
+pub(super) const RADII_FACTOR: f32 = 65_536.0;
+
 impl FrameLight {
     /// The light's constants; `None` for a directional light without a direction.
-    pub(super) fn new(light: &Light, eye: Vec3, scale: Scale) -> Option<Self> {
+    /// `smallest`: the frame's smallest sphere radius, scaled (`∞` without spheres),
+    /// for the far limit ([`RADII_FACTOR`]).
+    pub(super) fn new(light: &Light, eye: Vec3, scale: Scale, smallest: f32) -> Option<Self> {
         Some(match *light {
             Light::Directional { direction, intensity } => FrameLight::Directional {
                 l: -direction.try_normalize()?,
@@ -203,7 +218,7 @@ impl FrameLight {
                 FrameLight::Point {
                     p,
                     intensity,
-                    far: FAR_FACTOR * p.length(),
+                    far: (FAR_FACTOR * p.length()).min(RADII_FACTOR * smallest),
                 }
             }
         })
@@ -241,7 +256,13 @@ mod tests {
         let (eye, scale) = (Vec3::ZERO, Scale(s));
         let plane = Plane::new(Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0), Rgb888::WHITE);
         let floor = FramePlane::new(&plane, eye, scale).unwrap();
-        let lamp = FrameLight::new(&Light::point(Vec3::new(3.0, 4.5, 3.5), 1.0), eye, scale).unwrap();
+        let lamp = FrameLight::new(
+            &Light::point(Vec3::new(3.0, 4.5, 3.5), 1.0),
+            eye,
+            scale,
+            f32::INFINITY,
+        )
+        .unwrap();
         let mut by_t = 0;
         for k in 0..1000 {
             let f = k as f32 / 1000.0;

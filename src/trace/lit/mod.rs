@@ -246,8 +246,9 @@ fn render_with<
         let _ = planes.push(FramePlane::new(p, eye, frame.scale).unwrap_or(FramePlane::NEVER));
     }
     let mut lights: Vec<FrameLight, L> = Vec::new();
+    let smallest = scene.spheres().iter().fold(f32::INFINITY, |r, s| r.min(s.radius)) * frame.scale.0;
     for l in scene.lights() {
-        if let Some(fl) = FrameLight::new(l, eye, frame.scale) {
+        if let Some(fl) = FrameLight::new(l, eye, frame.scale, smallest) {
             let _ = lights.push(fl);
         }
     }

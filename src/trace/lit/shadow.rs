@@ -267,7 +267,7 @@ pub(crate) fn shadow_regions<const N: usize, const L: usize, const P: usize, con
     let floor = FramePlane::new(plane, eye, scale).unwrap_or(FramePlane::NEVER);
     let geom = SphereGeom::new(sphere.center, sphere.radius, eye, scale);
     for l in scene.lights() {
-        if let Some(light) = FrameLight::new(l, eye, scale) {
+        if let Some(light) = FrameLight::new(l, eye, scale, f32::INFINITY) {
             f(
                 match shadow_disc(&light, v64(geom.l), libm::sqrt(f64::from(geom.r2)), &floor) {
                     Some(disc) => disc_silhouette(&disc, camera, step_err),

@@ -21,6 +21,7 @@ use crate::sampling::{shares_samples, small_box, Sampling};
 use crate::scene::sphere::Sphere;
 use crate::scene::Scene;
 use crate::trace::lit::shadow::shadow_regions;
+use crate::trace::lit::smallest_radius;
 use crate::trace::lit::ties::same_ties;
 use crate::trace::options::Options;
 
@@ -133,7 +134,14 @@ impl<const N: usize, const L: usize, const P: usize, const D: usize> Incremental
         }
         let changed = |k: usize| shown.changed(scene, k);
         let any_changed = (0..scene.spheres().len()).any(changed);
-        if any_changed && features && !same_ties(&shown.scene, scene, camera.eye(), scale.0) {
+        // The ties and the shadow segments' far limit are frame-wide: a sphere that moves
+        // near a lamp, or changes the smallest radius, can change any shadow ray's test.
+        if any_changed
+            && features
+            && (!same_ties(&shown.scene, scene, camera.eye(), scale.0)
+                || smallest_radius(shown.scene.spheres()).to_bits()
+                    != smallest_radius(scene.spheres()).to_bits())
+        {
             return full();
         }
         let pad = match render.sampling() {

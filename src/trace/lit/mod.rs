@@ -40,6 +40,7 @@ use crate::camera::Camera;
 use crate::math::{SqrtFn, UNIT_ROUNDOFF};
 use crate::method::intersect::{Auto, Robust, TestStrategy, AUTO_FD_CAPACITY};
 use crate::method::stepping::Stepper;
+use crate::scene::sphere::Sphere;
 use crate::scene::Scene;
 use crate::trace::frame::{frame_scale, hull, Frame, FrameSetup};
 use crate::trace::lit::consts::{FrameLight, FramePlane, LitSphere};
@@ -189,6 +190,13 @@ fn by_origin<
     }
 }
 
+/// The smallest sphere radius of a frame (`∞` without spheres), in scene units: with
+/// the lamp's distance from the eye it sets the length beyond which a shadow segment is
+/// tested from the lamp (`RADII_FACTOR` in `consts`), a frame-wide decision.
+pub(crate) fn smallest_radius(spheres: &[Sphere]) -> f32 {
+    spheres.iter().fold(f32::INFINITY, |r, s| r.min(s.radius))
+}
+
 /// [`render`]'s frame with the exit strategy `O`: the frame's constants (spheres,
 /// planes, lights, ties and shadow silhouettes) once, then each clip's rows.
 ///
@@ -246,7 +254,7 @@ fn render_with<
         let _ = planes.push(FramePlane::new(p, eye, frame.scale).unwrap_or(FramePlane::NEVER));
     }
     let mut lights: Vec<FrameLight, L> = Vec::new();
-    let smallest = scene.spheres().iter().fold(f32::INFINITY, |r, s| r.min(s.radius)) * frame.scale.0;
+    let smallest = smallest_radius(scene.spheres()) * frame.scale.0;
     for l in scene.lights() {
         if let Some(fl) = FrameLight::new(l, eye, frame.scale, smallest) {
             let _ = lights.push(fl);

@@ -462,20 +462,24 @@ pub fn run(args: &Args) -> Result<(), String> {
     Ok(())
 }
 
-/// Whether paths `a` and `b` name the same file: the same name in the same directory
-/// (resolved through links where it exists, made absolute where it does not yet).
+/// Whether paths `a` and `b` name the same file: where it exists, the file its links
+/// lead to (a write goes there); else the same name in the same directory (resolved
+/// through links where it exists, made absolute where it does not yet).
 fn same_place(a: &Path, b: &Path) -> bool {
     let key = |p: &Path| {
+        if let Ok(file) = fs::canonicalize(p) {
+            return Some(file);
+        }
         let parent = p
             .parent()
             .filter(|d| !d.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
         let parent = fs::canonicalize(parent)
             .or_else(|_| std::path::absolute(parent))
-            .ok();
-        (parent, p.file_name().map(ToOwned::to_owned))
+            .ok()?;
+        Some(parent.join(p.file_name()?))
     };
-    a != Path::new("-") && key(a) == key(b)
+    a != Path::new("-") && key(a).is_some() && key(a) == key(b)
 }
 
 /// `dir`, made if missing (its parent must exist), refused if it is not a directory.

@@ -1840,3 +1840,36 @@ fn bad_sequences_exit_2_and_write_nothing() {
     let o = run_in(&dir, &[zero, "--frames", "3", "--output", out_s]);
     assert!(stderr(&o).contains("motion[0].period"), "{}", stderr(&o));
 }
+
+/// An `--output` that is a link to one of `--output-frames`' files is that file: refused
+/// (exit 2) before anything is traced, and the frame the link leads to is kept.
+#[cfg(unix)]
+#[test]
+fn an_output_linked_to_a_frame_is_refused() {
+    let dir = scratch("output-link");
+    let moving = format!("{GOOD}[[motion]]\nkind = \"bounce\"\nsphere = 0\nheight = 1.0\nperiod = 1.0\n");
+    let good = write(&dir, "moving.toml", &moving);
+    let frames = dir.join("frames");
+    std::fs::create_dir(&frames).unwrap();
+    let frame = frames.join("0001.png");
+    std::fs::write(&frame, b"frame one").unwrap();
+    std::os::unix::fs::symlink(&frame, dir.join("out.png")).unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            good,
+            "--frames",
+            "2",
+            "--output",
+            "out.png",
+            "--output-frames",
+            "frames",
+            "--force",
+        ],
+    );
+    assert_refused(
+        &o,
+        "out.png: --output: it is also frame 1 of --output-frames frames",
+    );
+    assert_eq!(std::fs::read(&frame).unwrap(), b"frame one");
+}

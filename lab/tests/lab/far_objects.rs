@@ -598,7 +598,7 @@ fn the_far_plane_under_a_near_lamp_is_in_no_shadow() {
 /// its own points, whose rounding exceeds the spheres' radii, the plane seen from 10⁵
 /// lay in false shadows (52 of its 19,200 pixels; from 3·10⁵ on, the lamp lies within
 /// the on-surface bound of every object, whose side and roots decide). The segments
-/// longer than `2¹⁶` smallest radii are tested from the lamp: the picture is the plane
+/// longer than `2¹⁶` smallest radii and `2·|P|` are tested from the lamp: the picture is the plane
 /// alone under the same light, bit for bit.
 #[test]
 fn the_far_plane_seen_from_far_away_is_in_no_shadow() {

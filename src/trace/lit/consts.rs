@@ -168,8 +168,8 @@ pub(super) enum FrameLight {
     /// Unit vector toward the light.
     Directional { l: Vec3, intensity: f32 },
     /// Eye-relative, scaled position; `far`: the shadow segment's length beyond which
-    /// it is tested from the lamp ([`FAR_FACTOR`] times `|p|`, at most [`RADII_FACTOR`]
-    /// times the smallest radius).
+    /// it is tested from the lamp ([`FAR_FACTOR`] times `|p|`, at most the larger of
+    /// [`RADII_FACTOR`] times the smallest radius and `2·|p|`).
     Point { p: Vec3, intensity: f32, far: f32 },
 }
 
@@ -197,10 +197,13 @@ pub(super) const FAR_FACTOR: f32 = 1024.0;
 /// With the eye far from the scene the lamp is far too, and [`FAR_FACTOR`]`·|P|` may
 /// exceed every segment: a surface `2⁹·|P|` away would be tested from its own points,
 /// whose rounding `u·|o|` exceeds the radii of the spheres near the lamp (false
-/// shadows over the whole surface). A segment longer than `2¹⁶·r` starts at a point
-/// whose rounding is at least `2⁻⁸·r`; from the lamp the line is known to the same
-/// bound as above, never more than a few times `o`'s. A scene whose lamp lies within
-/// `2⁶` smallest radii of the eye keeps [`FAR_FACTOR`]'s limit and its bits.
+/// shadows over the whole surface). A segment longer than both `2¹⁶·r` and `2·|P|`
+/// starts at a point farther from the eye than the lamp (`|o| ≥ dist − |P| > |P|`),
+/// whose rounding is at least `2⁻⁹·r`; from the lamp the line is known to the same
+/// bound as above, never more than a few times `o`'s. (Without `2·|P|`, a lamp far
+/// from a near scene would be taken as the end, and its own rounding exceeds the
+/// radii.) A scene whose lamp lies within `2⁶` smallest radii of the eye keeps
+/// [`FAR_FACTOR`]'s limit and its bits.
 pub(super) const RADII_FACTOR: f32 = 65_536.0;
 
 impl FrameLight {
@@ -218,7 +221,10 @@ impl FrameLight {
                 FrameLight::Point {
                     p,
                     intensity,
-                    far: (FAR_FACTOR * p.length()).min(RADII_FACTOR * smallest),
+                    far: {
+                        let lamp = p.length();
+                        (FAR_FACTOR * lamp).min((RADII_FACTOR * smallest).max(2.0 * lamp))
+                    },
                 }
             }
         })

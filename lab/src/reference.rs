@@ -540,8 +540,32 @@ pub fn render_params<const N: usize, const L: usize, const P: usize, const D: us
     scene: &Scene<N, L, P, D>,
     params: &CameraParams,
 ) -> Option<ReferenceImage> {
+    render_with(scene, params, true)
+}
+
+/// [`render`] with the on-surface rule for point lights switched off
+/// ([`lit::RefScene::lamp_ties`]): a lamp near a surface is decided by the general
+/// segment test alone. Not the kernel's contract (a lamp on a surface is in doubt
+/// there); the independent check of the rule where a lamp is near a surface but
+/// clearly off it.
+#[must_use]
+pub fn render_without_lamp_ties<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    camera: &Camera,
+) -> Option<ReferenceImage> {
+    render_with(scene, camera.params(), false)
+}
+
+fn render_with<const N: usize, const L: usize, const P: usize, const D: usize>(
+    scene: &Scene<N, L, P, D>,
+    params: &CameraParams,
+    lamp_ties: bool,
+) -> Option<ReferenceImage> {
     let camera = RefCamera::new(params)?;
-    let lit = lit::RefScene::of(scene);
+    let lit = lit::RefScene {
+        lamp_ties,
+        ..lit::RefScene::of(scene)
+    };
     let mut pixels = Vec::with_capacity(camera.width as usize * camera.height as usize);
     if lit.is_lab1() {
         let spheres: Vec<RefSphere> = scene

@@ -214,6 +214,11 @@ pub struct RefScene {
     /// centre and radius, or the same point and normal, bit for bit. Coincident objects
     /// are one surface, shown in the lower index's colour: the twin is never met.
     pub hidden: Vec<bool>,
+    /// Whether a point light within [`ON_SURFACE`] of a surface is decided by the
+    /// on-surface rule (`true`, what [`RefScene::of`] sets: the kernel's contract).
+    /// `false` sends every pair through the general segment test — the plain `f64`
+    /// geometry with its own error band, no tie: the independent check of the rule.
+    pub lamp_ties: bool,
 }
 
 /// A point light lies on a surface within `2⁻¹⁶` of the frame's lengths: on sphere
@@ -335,6 +340,7 @@ impl RefScene {
             .collect();
         Self {
             hidden,
+            lamp_ties: true,
             spheres,
             planes,
             lights,
@@ -751,7 +757,7 @@ fn shadow(
         if hidden(k) {
             continue;
         }
-        let on = lamp.filter(|&at| lamp_on_sphere(at, eye, c, r));
+        let on = lamp.filter(|&at| scene.lamp_ties && lamp_on_sphere(at, eye, c, r));
         let (b, d) = if let Some(at) = on {
             if k == from {
                 // A chord of its own sphere ends at the lamp on it: open there.
@@ -818,7 +824,9 @@ fn shadow(
         if n_spheres + k == from || hidden(n_spheres + k) {
             continue;
         }
-        if lamp.is_some_and(|at| lamp_on_plane(at, eye, pl.point, n) && (at - pl.point).dot(n) == 0.0) {
+        if lamp.is_some_and(|at| {
+            scene.lamp_ties && lamp_on_plane(at, eye, pl.point, n) && (at - pl.point).dot(n) == 0.0
+        }) {
             // Through the lamp: met only at the segment's open end. A lamp on it but
             // off it in f64 is decided below, by the signs at the two ends.
             continue;

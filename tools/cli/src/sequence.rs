@@ -327,7 +327,8 @@ pub fn run(args: &Args) -> Result<(), String> {
     let digits = count.to_string().len().max(4);
     if let (Some(output), Some(dir)) = (&apng, &args.output_frames) {
         // The animation is written last: over a frame of its own, it would replace it.
-        if let Some(k) = (1..=count).find(|k| same_place(output, &dir.join(format!("{k:0digits$}.png")))) {
+        let frame = |k: u32| place(&dir.join(format!("{k:0digits$}.png")));
+        if let Some(k) = place(output).and_then(|at| (1..=count).find(|&k| frame(k).as_ref() == Some(&at))) {
             return Err(format!(
                 "{}: --output: it is also frame {k} of --output-frames {}; give it another name",
                 output.display(),
@@ -462,24 +463,25 @@ pub fn run(args: &Args) -> Result<(), String> {
     Ok(())
 }
 
-/// Whether paths `a` and `b` name the same file: where it exists, the file its links
-/// lead to (a write goes there); else the same name in the same directory (resolved
-/// through links where it exists, made absolute where it does not yet).
-fn same_place(a: &Path, b: &Path) -> bool {
-    let key = |p: &Path| {
-        if let Ok(file) = fs::canonicalize(p) {
-            return Some(file);
-        }
-        let parent = p
-            .parent()
-            .filter(|d| !d.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
-        let parent = fs::canonicalize(parent)
-            .or_else(|_| std::path::absolute(parent))
-            .ok()?;
-        Some(parent.join(p.file_name()?))
-    };
-    a != Path::new("-") && key(a).is_some() && key(a) == key(b)
+/// The file a write to `p` reaches: where it exists, the file its links lead to (a
+/// write goes there); else the name `p` gives it in its directory, the directory
+/// resolved through links where it exists and made absolute where it does not yet.
+/// `None` for standard output (`-`) or a path without a file name.
+fn place(p: &Path) -> Option<PathBuf> {
+    if p == Path::new("-") {
+        return None;
+    }
+    if let Ok(file) = fs::canonicalize(p) {
+        return Some(file);
+    }
+    let parent = p
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let parent = fs::canonicalize(parent)
+        .or_else(|_| std::path::absolute(parent))
+        .ok()?;
+    Some(parent.join(p.file_name()?))
 }
 
 /// `dir`, made if missing (its parent must exist), refused if it is not a directory.

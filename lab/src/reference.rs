@@ -547,7 +547,7 @@ pub fn render_params<const N: usize, const L: usize, const P: usize, const D: us
 /// ([`lit::RefScene::lamp_ties`]): a lamp near a surface is decided by the general
 /// segment test alone. Not the kernel's contract (a lamp on a surface is in doubt
 /// there); the independent check of the rule where a lamp is near a surface but
-/// clearly off it.
+/// clearly off it. `None` when the `f64` basis is degenerate.
 #[must_use]
 pub fn render_without_lamp_ties<const N: usize, const L: usize, const P: usize, const D: usize>(
     scene: &Scene<N, L, P, D>,

@@ -598,8 +598,8 @@ fn the_far_plane_under_a_near_lamp_is_in_no_shadow() {
 /// its own points, whose rounding exceeds the spheres' radii, the plane seen from 10⁵
 /// lay in false shadows (52 of its 19,200 pixels; from 3·10⁵ on, the lamp lies within
 /// the on-surface bound of every object, whose side and roots decide). The segments
-/// longer than `2¹⁶` smallest radii and `2·|P|` are tested from the lamp: the picture is the plane
-/// alone under the same light, bit for bit.
+/// longer than `2¹⁶` smallest radii and `2·|P|` are tested from the lamp: the picture
+/// is the plane alone under the same light, bit for bit.
 #[test]
 fn the_far_plane_seen_from_far_away_is_in_no_shadow() {
     let spheres = "[[sphere]]\ncenter = [0.0, 1.0, 0.0]\nradius = 1.0\ncolor = [230, 60, 50]\n\

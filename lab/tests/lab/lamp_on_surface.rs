@@ -262,6 +262,25 @@ fn a_lamp_off_a_surface_within_the_bound_is_on_its_side() {
     assert_eq!(differ(&near, &far), 0);
 }
 
+/// A unit sphere resting on a checkered floor, a point light at `lamp`, seen straight
+/// down from `eye` above the origin at 64×64, the view about 8 wide at the floor.
+fn unit_sphere_seen_from_above(eye: f32, lamp: [f32; 3]) -> FullSceneFile {
+    let text = format!(
+        "background = [24, 34, 56]\nambient = 0.12\nshadows = true\n\
+         [camera]\neye = [0.0, {eye:?}, 0.0]\nlook_at = [0.0, 0.0, 0.0]\nup = [0.0, 0.0, -1.0]\n\
+         fov_y_deg = {:?}\nwidth = 64\nheight = 64\n\
+         [[light]]\ntype = \"point\"\nposition = [{:?}, {:?}, {:?}]\nintensity = 1.0\n\
+         [[sphere]]\ncenter = [0.0, 1.0, 0.0]\nradius = 1.0\ncolor = [230, 60, 50]\n\
+         [[plane]]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\n\
+         color = [225, 225, 215]\nchecker = [70, 70, 80]\n",
+        458.0 / eye,
+        lamp[0],
+        lamp[1],
+        lamp[2]
+    );
+    embedded_raytracer::scene_file::parse(&text).unwrap_or_else(|e| panic!("{e}"))
+}
+
 /// A lamp near a sphere, within the on-surface bound, the bound made large by an eye
 /// 10⁴ away (2⁻¹⁶ of the frame's lengths: about 0.3 for this unit sphere): the
 /// segment is decided by the sphere's true geometry, not as if it passed through the
@@ -274,18 +293,7 @@ fn a_lamp_off_a_surface_within_the_bound_is_on_its_side() {
 #[test]
 fn a_lamp_near_a_sphere_seen_from_far_away_casts_its_own_shadow() {
     for gap in [0.3f32, 0.1, 1e-2, -0.2] {
-        let text = format!(
-            "background = [24, 34, 56]\nambient = 0.12\nshadows = true\n\
-             [camera]\neye = [0.0, 10000.0, 0.0]\nlook_at = [0.0, 0.0, 0.0]\nup = [0.0, 0.0, -1.0]\n\
-             fov_y_deg = 0.0458\nwidth = 64\nheight = 64\n\
-             [[light]]\ntype = \"point\"\nposition = [{:?}, 1.0, 0.0]\nintensity = 1.0\n\
-             [[sphere]]\ncenter = [0.0, 1.0, 0.0]\nradius = 1.0\ncolor = [230, 60, 50]\n\
-             [[plane]]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\n\
-             color = [225, 225, 215]\nchecker = [70, 70, 80]\n",
-            1.0 + gap
-        );
-        let file: FullSceneFile =
-            embedded_raytracer::scene_file::parse(&text).unwrap_or_else(|e| panic!("{e}"));
+        let file = unit_sphere_seen_from_above(1e4, [1.0 + gap, 1.0, 0.0]);
         let truth = reference::render(&file.scene, &file.camera);
         let off = over_2(&file.scene, &file.camera, &truth, CONVEX);
         println!("gap {gap}: {off} off, {} undecidable", truth.undecidable());
@@ -324,21 +332,7 @@ fn a_lamp_near_a_sphere_agrees_with_the_reference_without_lamp_ties() {
                 1.0 + dir[1] * (1.0 + gap),
                 dir[2] * (1.0 + gap),
             ];
-            let text = format!(
-                "background = [24, 34, 56]\nambient = 0.12\nshadows = true\n\
-                 [camera]\neye = [0.0, {eye:?}, 0.0]\nlook_at = [0.0, 0.0, 0.0]\nup = [0.0, 0.0, -1.0]\n\
-                 fov_y_deg = {:?}\nwidth = 64\nheight = 64\n\
-                 [[light]]\ntype = \"point\"\nposition = [{:?}, {:?}, {:?}]\nintensity = 1.0\n\
-                 [[sphere]]\ncenter = [0.0, 1.0, 0.0]\nradius = 1.0\ncolor = [230, 60, 50]\n\
-                 [[plane]]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\n\
-                 color = [225, 225, 215]\nchecker = [70, 70, 80]\n",
-                458.0 / eye,
-                at[0],
-                at[1],
-                at[2]
-            );
-            let file: FullSceneFile =
-                embedded_raytracer::scene_file::parse(&text).unwrap_or_else(|e| panic!("{e}"));
+            let file = unit_sphere_seen_from_above(eye, at);
             let lamp = reference::D3::of(Vec3::new(at[0], at[1], at[2]));
             let centre = reference::D3::of(Vec3::new(0.0, 1.0, 0.0));
             let eye_at = reference::D3::of(Vec3::new(0.0, eye, 0.0));

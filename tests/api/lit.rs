@@ -595,3 +595,122 @@ fn a_plane_is_where_it_is_not_where_its_point_is() {
         near.len()
     );
 }
+
+/// A floor without a highlight or a mirror is shaded from the frame's floor constants
+/// where a `DrawTarget` draws it (the colour runs), and by the general shading where a
+/// render is traced (the samples): both the same pixels, bit for bit, on random lit
+/// scenes — suns the floor faces and faces away from, lamps above and below it, a
+/// second plane, mirror spheres, shadows on and off, both exits, every method.
+#[test]
+fn the_floor_constants_draw_what_the_general_shading_does() {
+    let mut rng = common::Rng(0xf1_00f5);
+    let (mut floor_pixels, mut shadowed) = (0, 0);
+    for case in 0..48 {
+        let mut s: Scene<4, 3, 2, 2> = Scene::new(Rgb888::new(10, 20, 30));
+        let n = Vec3::new(rng.range(-0.4, 0.4), 1.0, rng.range(-0.4, 0.4));
+        let floor_y = rng.range(-2.0, 0.0);
+        let floor = Plane::new(Vec3::new(0.0, floor_y, 0.0), n, Rgb888::new(200, 190, 180));
+        let floor = if case % 3 == 0 {
+            floor
+        } else {
+            floor.with_checker(Rgb888::new(50, 60, 70), rng.range(0.3, 2.0))
+        };
+        s.push_plane(floor).unwrap();
+        if rng.next() < 0.3 {
+            s.push_plane(Plane::new(
+                Vec3::new(0.0, 0.0, -8.0),
+                Vec3::new(0.0, 0.2, 1.0),
+                Rgb888::new(90, 200, 90),
+            ))
+            .unwrap();
+        }
+        for _ in 0..1 + (rng.next() * 4.0) as usize {
+            let r = rng.range(0.2, 1.5);
+            let centre = Vec3::new(
+                rng.range(-3.0, 3.0),
+                floor_y + rng.range(-r, 3.0),
+                rng.range(-4.0, 2.0),
+            );
+            let reflect = if rng.next() < 0.3 { 0.5 } else { 0.0 };
+            s.push(
+                Sphere::new(centre, r, Rgb888::new(250, 120, 60))
+                    .with_material(Material::new(0.4, 20.0, reflect)),
+            )
+            .unwrap();
+        }
+        for _ in 0..1 + (rng.next() * 3.0) as usize {
+            // Down onto the floor, or (one in five) up from under it.
+            let down = if rng.next() < 0.2 { 1.0 } else { -1.0 };
+            let light = if rng.next() < 0.5 {
+                Light::directional(
+                    Vec3::new(
+                        rng.range(-1.0, 1.0),
+                        down * rng.range(0.02, 2.0),
+                        rng.range(-1.0, 1.0),
+                    ),
+                    rng.range(0.2, 0.8),
+                )
+            } else {
+                Light::point(
+                    Vec3::new(
+                        rng.range(-4.0, 4.0),
+                        floor_y - down * rng.range(0.1, 6.0),
+                        rng.range(-4.0, 4.0),
+                    ),
+                    rng.range(0.2, 0.8),
+                )
+            };
+            s.push_light(light).unwrap();
+        }
+        if case % 4 == 3 {
+            let settings = s.settings().with_shadows(false);
+            s.set_settings(settings).unwrap();
+        }
+        let eye = Vec3::new(
+            rng.range(-6.0, 6.0),
+            floor_y + rng.range(0.2, 5.0),
+            rng.range(4.0, 9.0),
+        );
+        let Ok(camera) = Camera::new(
+            eye,
+            Vec3::new(0.0, floor_y, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            rng.range(0.3, 1.6),
+            Size::new(32, 24),
+        ) else {
+            continue;
+        };
+        let method = Method::ALL[case % Method::ALL.len()];
+        let origin = if case % 5 == 4 {
+            SecondaryOrigin::TEXTBOOK
+        } else {
+            SecondaryOrigin::Convex
+        };
+        let render = Render::new(&s, &camera)
+            .with_method(method)
+            .with_options(Options::DEFAULT.with_secondary(origin));
+        let traced = common::trace(render);
+        let mut frame = Frame::new(camera.size());
+        render.draw(&mut frame).unwrap();
+        for (k, p) in traced.iter().enumerate() {
+            let at = Point::new(k as i32 % 32, k as i32 / 32);
+            assert_eq!(
+                frame.get(at),
+                Some(p.1),
+                "case {case}, {method}, pixel {at:?}: spheres {:?} lights {:?} planes {:?} camera {:?}",
+                s.spheres(),
+                s.lights(),
+                s.planes(),
+                camera.params()
+            );
+        }
+        let on_floor = traced
+            .iter()
+            .filter(|p| p.0.is_some_and(|h| h.0 == s.spheres().len()));
+        floor_pixels += on_floor.clone().count();
+        shadowed += on_floor.filter(|p| p.1.r() < 60).count();
+    }
+    // The cases draw the floor, and shadows on it.
+    assert!(floor_pixels > 10_000, "floor pixels: {floor_pixels}");
+    assert!(shadowed > 200, "floor pixels in shadow: {shadowed}");
+}

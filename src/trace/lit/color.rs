@@ -20,8 +20,16 @@ use crate::trace::rows::{Fnv, Ident};
 /// A reflected ray's identity where it hits nothing.
 const REFLECTS_NOTHING: u32 = 0x9e37_79b9;
 
-impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const P: usize, const D: usize>
-    LitRow<'_, '_, T, Q, O, N, L, P, D>
+impl<
+        T: TestStrategy,
+        Q: SqrtFn,
+        O: Exit,
+        const N: usize,
+        const L: usize,
+        const P: usize,
+        const D: usize,
+        const F: bool,
+    > LitRow<'_, '_, T, Q, O, N, L, P, D, F>
 {
     /// The colour of a primary ray along `d` whose closest hit is `first`: the local
     /// colour, mixed with what the reflected rays see while the surface is a mirror and
@@ -31,14 +39,33 @@ impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const 
     /// in several paths, and shading is hundreds of instructions per pixel.
     #[inline(never)]
     pub(super) fn color(&mut self, first: Option<(ObjectId, f32)>, d: Vec3, i: u32) -> Rgb888 {
-        self.shade(first, d, i)
+        self.general(first, d, i)
     }
 
-    /// [`Self::color`], inlined: the colour runs (a `DrawTarget`'s path) take it in
-    /// their row loop, so a pixel pays no call, and no save of the FP registers the
-    /// shading uses (`vpush d8–d15`; its cost: `docs/firmware.md`, "Lit frames").
+    /// [`Self::color`], for the colour runs (a `DrawTarget`'s path).
+    ///
+    /// In a frame with the floor's constants (`F`), a floor pixel is shaded inline
+    /// from them ([`Self::floor_color`]) and any other pixel by the out-of-line
+    /// [`Self::color`]: the row loop keeps the short floor path in registers. Otherwise
+    /// the general shading is inlined, so a pixel pays no call and no save of the FP
+    /// registers it uses (`vpush d8–d15`; its cost: `docs/firmware.md`, "Lit frames").
     #[inline(always)]
     pub(super) fn shade(&mut self, first: Option<(ObjectId, f32)>, d: Vec3, i: u32) -> Rgb888 {
+        if let (true, Some(floor), Some((k, t))) = (F, self.f.floor, first) {
+            if k == ObjectId::new(self.f.spheres.len()) {
+                return self.floor_color(floor, t, d, i);
+            }
+        }
+        if F {
+            self.color(first, d, i)
+        } else {
+            self.general(first, d, i)
+        }
+    }
+
+    /// The general shading loop of [`Self::color`].
+    #[inline(always)]
+    fn general(&mut self, first: Option<(ObjectId, f32)>, d: Vec3, i: u32) -> Rgb888 {
         let f = self.f;
         let mut acc = [0.0f32; 3];
         let mut weight = 1.0f32;

@@ -2,8 +2,10 @@
 //!
 //! Each sphere's shading constants ([`LitSphere`], beside the geometry
 //! `trace/frame.rs` builds for every path), each plane's ([`FramePlane`]) and each
-//! light's ([`FrameLight`]), all in the frame's eye-relative, scaled units
-//! ([`Scale`]).
+//! light's ([`FrameLight`]), and the floor's as its pixels' shading reads them
+//! ([`Floor`]), all in the frame's eye-relative, scaled units ([`Scale`]).
+
+use heapless::Vec;
 
 use crate::math::vec3::Vec3;
 use crate::method::intersect::{Scale, SphereGeom};
@@ -294,5 +296,64 @@ mod tests {
         }
         // An end on the plane does not cross: the segment is open.
         assert!(!floor.separates(Vec3::new(5.0, 0.0, 1.0), at));
+    }
+}
+
+/// A light as a floor pixel's shading reads it.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum FloorLight {
+    /// A directional light the floor's turned normal faces away from (`n·l ≤ 0` or
+    /// NaN): it lights no floor pixel and casts no shadow ray from one.
+    Dark,
+    /// A directional light in front of the floor: its unit vector `l` and its diffuse
+    /// term `intensity·(n·l)`, the product every lit floor pixel adds.
+    Sun { l: Vec3, term: f32 },
+    /// A point light, as [`FrameLight::Point`].
+    Lamp { p: Vec3, intensity: f32, far: f32 },
+}
+
+/// The floor's per-frame shading constants: its normal turned toward the eye, and its
+/// lights.
+///
+/// Built only for a floor whose pixels the general shading colours by their local
+/// colour alone: no highlight (`specular` not above 0) and no reflected ray (no mirror,
+/// or a scene type without reflections), in a frame with lights.
+pub(super) struct Floor<const L: usize> {
+    /// The normal turned toward the eye, as the general shading turns it for a primary
+    /// ray: by the sign of the plane's `s = (q − eye)·n`.
+    pub(super) n: Vec3,
+    pub(super) lights: Vec<FloorLight, L>,
+}
+
+impl<const L: usize> Floor<L> {
+    /// The floor's constants, or `None` where its pixels need the general shading (a
+    /// highlight, a mirror with reflections on, no light).
+    pub(super) fn new(plane: &FramePlane, lights: &[FrameLight], reflections: bool) -> Option<Self> {
+        let m = plane.material;
+        if lights.is_empty() || m.specular > 0.0 || (reflections && m.reflect > 0.0) {
+            return None;
+        }
+        // The primary ray's turned normal (`LitRow::surface`, `primary`).
+        let n = if plane.s > 0.0 { -plane.n } else { plane.n };
+        let mut out = Vec::new();
+        for light in lights {
+            let fl = match *light {
+                FrameLight::Directional { l, intensity } => {
+                    let nl = n.dot(l);
+                    if nl > 0.0 {
+                        FloorLight::Sun {
+                            l,
+                            term: intensity * nl,
+                        }
+                    } else {
+                        FloorLight::Dark
+                    }
+                }
+                FrameLight::Point { p, intensity, far } => FloorLight::Lamp { p, intensity, far },
+            };
+            // Never fails: `lights` holds at most L.
+            out.push(fl).ok()?;
+        }
+        Some(Self { n, lights: out })
     }
 }

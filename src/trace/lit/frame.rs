@@ -8,7 +8,7 @@ use crate::camera::Camera;
 use crate::math::vec3::Vec3;
 use crate::method::intersect::TestStrategy;
 use crate::trace::frame::FrameSphere;
-use crate::trace::lit::consts::{FrameLight, FramePlane, LitSphere};
+use crate::trace::lit::consts::{Floor, FrameLight, FramePlane, LitSphere};
 use crate::trace::lit::shadow::ShadowRow;
 use crate::trace::lit::ties::Ties;
 
@@ -31,6 +31,9 @@ pub(super) struct LitFrame<'a, T: TestStrategy, const N: usize, const L: usize, 
     /// moved for every row).
     pub(super) shadow_rows: &'a [ShadowRow<N>; L],
     pub(super) planes: &'a [FramePlane],
+    /// The first plane's shading constants where its pixels need no highlight and no
+    /// reflected ray (`floor.rs`).
+    pub(super) floor: Option<&'a Floor<L>>,
     pub(super) lights: &'a [FrameLight],
     pub(super) camera: &'a Camera,
     pub(super) w: Vec3,

@@ -12,7 +12,9 @@
 //! - **Per pixel**: the closest hit over the active spheres (the method's own test, as
 //!   in the Lab #1 loop) and the planes whose span holds the column; then the shading
 //!   loop (`color.rs`): the local colour (`shading.rs`), and while the surface is a
-//!   mirror and the depth allows, the reflected ray.
+//!   mirror and the depth allows, the reflected ray. A floor without a highlight or a
+//!   mirror is shaded from its per-frame constants (`floor.rs`), in a row loop of its
+//!   own chosen once per frame.
 //!
 //! Secondary rays start on a surface (`exit.rs`); where a lamp lies on a surface, or
 //! two objects coincide, the frame decides it exactly (`ties.rs`, `exact.rs`).
@@ -23,6 +25,7 @@ mod color;
 mod consts;
 mod exact;
 mod exit;
+mod floor;
 mod frame;
 mod object;
 mod occlusion;
@@ -43,7 +46,7 @@ use crate::method::stepping::Stepper;
 use crate::scene::sphere::Sphere;
 use crate::scene::Scene;
 use crate::trace::frame::{frame_scale, hull, Frame, FrameSetup};
-use crate::trace::lit::consts::{FrameLight, FramePlane, LitSphere};
+use crate::trace::lit::consts::{Floor, FrameLight, FramePlane, LitSphere};
 use crate::trace::lit::exit::{ConvexExit, EpsilonExit, Exit};
 use crate::trace::lit::frame::LitFrame;
 use crate::trace::lit::row::LitRow;
@@ -261,6 +264,11 @@ fn render_with<
         }
     }
     let ties = Ties::new(scene, eye, frame.scale.0);
+    // The floor's pixels shaded from per-frame constants, where they need no highlight
+    // and no reflected ray.
+    let floor = planes
+        .first()
+        .and_then(|plane| Floor::<L>::new(plane, &lights, D > 0));
     let size = camera.size();
     let d_max = f64::from(camera.first_direction().length())
         + f64::from(size.width) * f64::from(camera.pixel_step().length())
@@ -285,6 +293,7 @@ fn render_with<
         shadow: &shadow,
         shadow_rows: &shadow_rows,
         planes: &planes,
+        floor: floor.as_ref(),
         lights: &lights,
         camera,
         w: camera.w(),
@@ -309,9 +318,17 @@ fn render_with<
             i1: frame.i1,
             ..lit
         };
-        rows.draw_rows::<N, K, S, T, Q, LitSphere, _>(&frame, sink, |j, lo, hi| {
-            LitRow::<T, Q, O, N, L, P, D>::new(&lit, j, lo, hi)
-        })?;
+        // The floor's constants chosen once per frame, as a row loop of its own: a
+        // frame without them runs the general shading's loop unchanged.
+        if lit.floor.is_some() {
+            rows.draw_rows::<N, K, S, T, Q, LitSphere, _>(&frame, sink, |j, lo, hi| {
+                LitRow::<T, Q, O, N, L, P, D, true>::new(&lit, j, lo, hi)
+            })?;
+        } else {
+            rows.draw_rows::<N, K, S, T, Q, LitSphere, _>(&frame, sink, |j, lo, hi| {
+                LitRow::<T, Q, O, N, L, P, D, false>::new(&lit, j, lo, hi)
+            })?;
+        }
     }
     Ok(())
 }

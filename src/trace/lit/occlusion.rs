@@ -15,8 +15,16 @@ use crate::trace::lit::object::{LastOccluder, ObjectId};
 use crate::trace::lit::row::LitRow;
 use crate::trace::lit::shadow::ShadowRay;
 
-impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const P: usize, const D: usize>
-    LitRow<'_, '_, T, Q, O, N, L, P, D>
+impl<
+        T: TestStrategy,
+        Q: SqrtFn,
+        O: Exit,
+        const N: usize,
+        const L: usize,
+        const P: usize,
+        const D: usize,
+        const F: bool,
+    > LitRow<'_, '_, T, Q, O, N, L, P, D, F>
 {
     /// Whether object `k` crosses the open segment of `ray` (its `from`/`inside` as for
     /// [`Self::closest`]).

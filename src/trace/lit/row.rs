@@ -23,7 +23,8 @@ use crate::trace::scanline::RowTracer;
 /// light, the object that last shadowed a pixel of the row.
 ///
 /// The last occluder is tested first: neighbouring pixels are usually shadowed by the
-/// same one.
+/// same one. `F`: the frame has the floor's constants (`LitFrame::floor`), and its
+/// floor pixels take them (`floor.rs`).
 pub(super) struct LitRow<
     'f,
     's,
@@ -34,6 +35,7 @@ pub(super) struct LitRow<
     const L: usize,
     const P: usize,
     const D: usize,
+    const F: bool,
 > {
     pub(super) f: &'f LitFrame<'s, T, N, L, P>,
     /// Per plane: columns `[lo, lo + len)` whose rays can hit it.
@@ -53,7 +55,8 @@ impl<
         const L: usize,
         const P: usize,
         const D: usize,
-    > LitRow<'f, 's, T, Q, O, N, L, P, D>
+        const F: bool,
+    > LitRow<'f, 's, T, Q, O, N, L, P, D, F>
 {
     /// Row `j`: the planes' spans, widening the row's traced union `[lo_all, hi_all)`,
     /// and the shadow spans.
@@ -172,7 +175,8 @@ impl<
         const L: usize,
         const P: usize,
         const D: usize,
-    > RowTracer<'s, T, LitSphere> for LitRow<'_, 's, T, Q, O, N, L, P, D>
+        const F: bool,
+    > RowTracer<'s, T, LitSphere> for LitRow<'_, 's, T, Q, O, N, L, P, D, F>
 {
     #[inline(always)]
     fn background(&self) -> Rgb888 {
@@ -232,7 +236,8 @@ impl<
         const L: usize,
         const P: usize,
         const D: usize,
-    > LitRow<'_, 's, T, Q, O, N, L, P, D>
+        const F: bool,
+    > LitRow<'_, 's, T, Q, O, N, L, P, D, F>
 {
     /// The closest hit of the primary ray `d`: the sphere hit, then the planes (with
     /// `CULL`, only those whose row span holds column `i`).

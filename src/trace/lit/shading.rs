@@ -40,8 +40,16 @@ impl Surface {
     }
 }
 
-impl<T: TestStrategy, Q: SqrtFn, O: Exit, const N: usize, const L: usize, const P: usize, const D: usize>
-    LitRow<'_, '_, T, Q, O, N, L, P, D>
+impl<
+        T: TestStrategy,
+        Q: SqrtFn,
+        O: Exit,
+        const N: usize,
+        const L: usize,
+        const P: usize,
+        const D: usize,
+        const F: bool,
+    > LitRow<'_, '_, T, Q, O, N, L, P, D, F>
 {
     /// The surface at `p` of object `k`, met by a ray along `dir`; `primary`: the ray is
     /// the pixel's own, whose hit the row's primary test found.

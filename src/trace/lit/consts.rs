@@ -5,8 +5,6 @@
 //! light's ([`FrameLight`]), and the floor's as its pixels' shading reads them
 //! ([`Floor`]), all in the frame's eye-relative, scaled units ([`Scale`]).
 
-use heapless::Vec;
-
 use crate::math::vec3::Vec3;
 use crate::method::intersect::{Scale, SphereGeom};
 use crate::scene::light::Light;
@@ -306,10 +304,18 @@ pub(super) enum FloorLight {
     /// NaN): it lights no floor pixel and casts no shadow ray from one.
     Dark,
     /// A directional light in front of the floor: its unit vector `l` and its diffuse
-    /// term `intensity·(n·l)`, the product every lit floor pixel adds.
-    Sun { l: Vec3, term: f32 },
-    /// A point light, as [`FrameLight::Point`].
-    Lamp { p: Vec3, intensity: f32, far: f32 },
+    /// term `intensity·(n·l)`, the product every lit floor pixel adds; `exact`: its
+    /// shadow rays need the frame's ties ([`Ties::exact_mask`]).
+    ///
+    /// [`Ties::exact_mask`]: crate::trace::lit::ties::Ties::exact_mask
+    Sun { l: Vec3, term: f32, exact: bool },
+    /// A point light, as [`FrameLight::Point`]; `exact` as for a sun.
+    Lamp {
+        p: Vec3,
+        intensity: f32,
+        far: f32,
+        exact: bool,
+    },
 }
 
 /// The floor's per-frame shading constants: its normal turned toward the eye, and its
@@ -322,21 +328,32 @@ pub(super) struct Floor<const L: usize> {
     /// The normal turned toward the eye, as the general shading turns it for a primary
     /// ray: by the sign of the plane's `s = (q − eye)·n`.
     pub(super) n: Vec3,
-    pub(super) lights: Vec<FloorLight, L>,
+    /// The frame's lights in the scene's order, then [`FloorLight::Dark`] up to the
+    /// capacity: a loop of a constant length, which the compiler unrolls.
+    pub(super) lights: [FloorLight; L],
 }
 
 impl<const L: usize> Floor<L> {
     /// The floor's constants, or `None` where its pixels need the general shading (a
-    /// highlight, a mirror with reflections on, no light).
-    pub(super) fn new(plane: &FramePlane, lights: &[FrameLight], reflections: bool) -> Option<Self> {
+    /// highlight, a mirror with reflections on, no light); `exact_mask`: the frame's
+    /// [`Ties::exact_mask`].
+    ///
+    /// [`Ties::exact_mask`]: crate::trace::lit::ties::Ties::exact_mask
+    pub(super) fn new(
+        plane: &FramePlane,
+        lights: &[FrameLight],
+        reflections: bool,
+        exact_mask: u32,
+    ) -> Option<Self> {
         let m = plane.material;
         if lights.is_empty() || m.specular > 0.0 || (reflections && m.reflect > 0.0) {
             return None;
         }
         // The primary ray's turned normal (`LitRow::surface`, `primary`).
         let n = if plane.s > 0.0 { -plane.n } else { plane.n };
-        let mut out = Vec::new();
-        for light in lights {
+        let mut out = [FloorLight::Dark; L];
+        for ((k, light), slot) in lights.iter().enumerate().zip(&mut out) {
+            let exact = exact_mask & (1 << k.min(31)) != 0;
             let fl = match *light {
                 FrameLight::Directional { l, intensity } => {
                     let nl = n.dot(l);
@@ -344,15 +361,20 @@ impl<const L: usize> Floor<L> {
                         FloorLight::Sun {
                             l,
                             term: intensity * nl,
+                            exact,
                         }
                     } else {
                         FloorLight::Dark
                     }
                 }
-                FrameLight::Point { p, intensity, far } => FloorLight::Lamp { p, intensity, far },
+                FrameLight::Point { p, intensity, far } => FloorLight::Lamp {
+                    p,
+                    intensity,
+                    far,
+                    exact,
+                },
             };
-            // Never fails: `lights` holds at most L.
-            out.push(fl).ok()?;
+            *slot = fl;
         }
         Some(Self { n, lights: out })
     }

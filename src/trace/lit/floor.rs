@@ -38,8 +38,8 @@ impl<
     ///
     /// The general shading's steps for such a hit, each value the same bits: the hit
     /// point `0 + d·t`, the checker cell, per light (in the scene's order) the lamp's
-    /// distance and direction and `n·l`, the shadow ray through
-    /// [`LitRow::shadowed`], the diffuse sum, then `c·(ambient + diffuse) + 0` clamped
+    /// distance and direction and `n·l`, the shadow ray as [`LitRow::shadowed`] tests
+    /// it, the diffuse sum, then `c·(ambient + diffuse) + 0` clamped
     /// to 255 and rounded. The general path then adds that local colour, weighted by 1,
     /// to a zero sum: `0 + 1·x = x` for every `x` it can be (not below `+0`: `c·light
     /// + 0` is never `−0`; or NaN), so the sum is left out.
@@ -51,13 +51,14 @@ impl<
         let rgb = f.planes.first().map_or(f.bg, |plane| plane.color_at(p));
         let mut diffuse = 0.0f32;
         for (index, light) in floor.lights.iter().enumerate() {
-            let (l, dist, far, term) = match *light {
+            let (l, dist, far, term, exact) = match *light {
                 FloorLight::Dark => continue,
-                FloorLight::Sun { l, term } => (l, f32::INFINITY, f32::INFINITY, term),
+                FloorLight::Sun { l, term, exact } => (l, f32::INFINITY, f32::INFINITY, term, exact),
                 FloorLight::Lamp {
                     p: at,
                     intensity,
                     far,
+                    exact,
                 } => {
                     let to = at - p;
                     let dist = sqrt_exact(to.dot(to));
@@ -66,12 +67,13 @@ impl<
                     if !(nl > 0.0) {
                         continue;
                     }
-                    (l, dist, far, intensity * nl)
+                    (l, dist, far, intensity * nl, exact)
                 }
             };
             if f.shadows {
                 let o = O::start(p, l, f.eps);
                 let dist = if O::TESTS_SELF { dist - f.eps } else { dist };
+                // Built in each branch (see `LitRow::shadowed`).
                 let ray = || ShadowRay {
                     o,
                     l,
@@ -79,7 +81,14 @@ impl<
                     from: k,
                     inside: false,
                 };
-                if self.shadowed(index, ray, dist > far, Some(i)) {
+                // `LitRow::shadowed`'s choice, its mask bit read once per frame.
+                let far = dist > far;
+                let blocked = if far || exact {
+                    self.occluded_exact(index, ray(), far)
+                } else {
+                    self.occluded(index, ray(), Some(i))
+                };
+                if blocked {
                     continue;
                 }
             }

@@ -268,7 +268,7 @@ fn render_with<
     // and no reflected ray.
     let floor = planes
         .first()
-        .and_then(|plane| Floor::<L>::new(plane, &lights, D > 0));
+        .and_then(|plane| Floor::<L>::new(plane, &lights, D > 0, ties.exact_mask()));
     let size = camera.size();
     let d_max = f64::from(camera.first_direction().length())
         + f64::from(size.width) * f64::from(camera.pixel_step().length())

@@ -97,7 +97,7 @@ impl<
     /// one blocks. The literal baseline tests every object, as a closest-hit search
     /// would. Any hit: the order of the tests changes no answer.
     #[inline(always)]
-    fn occluded(&mut self, light: usize, ray: ShadowRay, column: Option<u32>) -> bool {
+    pub(super) fn occluded(&mut self, light: usize, ray: ShadowRay, column: Option<u32>) -> bool {
         let f = self.f;
         let n = f.spheres.len();
         let count = n + f.planes.len();
@@ -154,7 +154,7 @@ impl<
     /// [`Ties`]: crate::trace::lit::ties::Ties
     /// [`FAR_FACTOR`]: crate::trace::lit::consts::FAR_FACTOR
     #[inline(never)]
-    fn occluded_exact(&self, light: usize, ray: ShadowRay, far: bool) -> bool {
+    pub(super) fn occluded_exact(&self, light: usize, ray: ShadowRay, far: bool) -> bool {
         let f = self.f;
         let (Some(on_sphere), Some(sphere_g), Some(on_plane), Some(at)) = (
             f.ties.on_sphere.get(light),

@@ -44,11 +44,12 @@ impl<
 
     /// [`Self::color`], for the colour runs (a `DrawTarget`'s path).
     ///
-    /// In a frame with the floor's constants (`F`), a floor pixel is shaded inline
-    /// from them ([`Self::floor_color`]) and any other pixel by the out-of-line
-    /// [`Self::color`]: the row loop keeps the short floor path in registers. Otherwise
-    /// the general shading is inlined, so a pixel pays no call and no save of the FP
-    /// registers it uses (`vpush d8–d15`; its cost: `docs/firmware.md`, "Lit frames").
+    /// In a scene type without reflections (`F`), a floor pixel is shaded inline from
+    /// the frame's floor constants where it has them ([`Self::floor_color`]), and any
+    /// other pixel by the out-of-line [`Self::color`]: the row loop keeps the short
+    /// floor path in registers. With reflections (the floor may be a mirror) the general
+    /// shading is inlined, so a pixel pays no call and no save of the FP registers it
+    /// uses (`vpush d8–d15`; its cost: `docs/firmware.md`, "Lit frames").
     #[inline(always)]
     pub(super) fn shade(&mut self, first: Option<(ObjectId, f32)>, d: Vec3, i: u32) -> Rgb888 {
         if let (true, Some(floor), Some((k, t))) = (F, self.f.floor, first) {

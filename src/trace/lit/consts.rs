@@ -321,9 +321,9 @@ pub(super) enum FloorLight {
 /// The floor's per-frame shading constants: its normal turned toward the eye, and its
 /// lights.
 ///
-/// Built only for a floor whose pixels the general shading colours by their local
-/// colour alone: no highlight (`specular` not above 0) and no reflected ray (no mirror,
-/// or a scene type without reflections), in a frame with lights.
+/// Built only in a scene type without reflections, for a floor whose pixels the
+/// general shading colours by their local colour alone (no highlight: `specular` not
+/// above 0), in a frame with lights.
 pub(super) struct Floor<const L: usize> {
     /// The normal turned toward the eye, as the general shading turns it for a primary
     /// ray: by the sign of the plane's `s = (q − eye)·n`.
@@ -335,18 +335,13 @@ pub(super) struct Floor<const L: usize> {
 
 impl<const L: usize> Floor<L> {
     /// The floor's constants, or `None` where its pixels need the general shading (a
-    /// highlight, a mirror with reflections on, no light); `exact_mask`: the frame's
+    /// highlight, no light); `exact_mask`: the frame's
     /// [`Ties::exact_mask`].
     ///
     /// [`Ties::exact_mask`]: crate::trace::lit::ties::Ties::exact_mask
-    pub(super) fn new(
-        plane: &FramePlane,
-        lights: &[FrameLight],
-        reflections: bool,
-        exact_mask: u32,
-    ) -> Option<Self> {
+    pub(super) fn new(plane: &FramePlane, lights: &[FrameLight], exact_mask: u32) -> Option<Self> {
         let m = plane.material;
-        if lights.is_empty() || m.specular > 0.0 || (reflections && m.reflect > 0.0) {
+        if lights.is_empty() || m.specular > 0.0 {
             return None;
         }
         // The primary ray's turned normal (`LitRow::surface`, `primary`).

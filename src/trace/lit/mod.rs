@@ -12,9 +12,9 @@
 //! - **Per pixel**: the closest hit over the active spheres (the method's own test, as
 //!   in the Lab #1 loop) and the planes whose span holds the column; then the shading
 //!   loop (`color.rs`): the local colour (`shading.rs`), and while the surface is a
-//!   mirror and the depth allows, the reflected ray. A floor without a highlight or a
-//!   mirror is shaded from its per-frame constants (`floor.rs`), in a row loop of its
-//!   own chosen once per frame.
+//!   mirror and the depth allows, the reflected ray. In a scene type without
+//!   reflections, a floor without a highlight is shaded from its per-frame constants
+//!   (`floor.rs`) and the other pixels out of line.
 //!
 //! Secondary rays start on a surface (`exit.rs`); where a lamp lies on a surface, or
 //! two objects coincide, the frame decides it exactly (`ties.rs`, `exact.rs`).
@@ -264,11 +264,15 @@ fn render_with<
         }
     }
     let ties = Ties::new(scene, eye, frame.scale.0);
-    // The floor's pixels shaded from per-frame constants, where they need no highlight
-    // and no reflected ray.
-    let floor = planes
-        .first()
-        .and_then(|plane| Floor::<L>::new(plane, &lights, D > 0, ties.exact_mask()));
+    // The floor's pixels shaded from per-frame constants in a scene type without
+    // reflections (the row loop below).
+    let floor = if D == 0 {
+        planes
+            .first()
+            .and_then(|plane| Floor::<L>::new(plane, &lights, ties.exact_mask()))
+    } else {
+        None
+    };
     let size = camera.size();
     let d_max = f64::from(camera.first_direction().length())
         + f64::from(size.width) * f64::from(camera.pixel_step().length())
@@ -318,9 +322,10 @@ fn render_with<
             i1: frame.i1,
             ..lit
         };
-        // The floor's constants chosen once per frame, as a row loop of its own: a
-        // frame without them runs the general shading's loop unchanged.
-        if lit.floor.is_some() {
+        // A scene type without reflections has a row loop whose floor pixels take the
+        // floor's constants (`floor.rs`); one with them keeps the general shading
+        // inlined for every pixel (its floor may be a mirror). One loop per scene type.
+        if D == 0 {
             rows.draw_rows::<N, K, S, T, Q, LitSphere, _>(&frame, sink, |j, lo, hi| {
                 LitRow::<T, Q, O, N, L, P, D, true>::new(&lit, j, lo, hi)
             })?;

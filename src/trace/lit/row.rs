@@ -23,8 +23,8 @@ use crate::trace::scanline::RowTracer;
 /// light, the object that last shadowed a pixel of the row.
 ///
 /// The last occluder is tested first: neighbouring pixels are usually shadowed by the
-/// same one. `F`: the frame has the floor's constants (`LitFrame::floor`), and its
-/// floor pixels take them (`floor.rs`).
+/// same one. `F`: the scene type has no reflections, and the floor's pixels take the
+/// frame's floor constants where it has them (`LitFrame::floor`, `floor.rs`).
 pub(super) struct LitRow<
     'f,
     's,

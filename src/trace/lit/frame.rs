@@ -31,8 +31,8 @@ pub(super) struct LitFrame<'a, T: TestStrategy, const N: usize, const L: usize, 
     /// moved for every row).
     pub(super) shadow_rows: &'a [ShadowRow<N>; L],
     pub(super) planes: &'a [FramePlane],
-    /// The first plane's shading constants where its pixels need no highlight and no
-    /// reflected ray (`floor.rs`).
+    /// The first plane's shading constants, in a scene type without reflections and
+    /// where its pixels need no highlight (`floor.rs`).
     pub(super) floor: Option<&'a Floor<L>>,
     pub(super) lights: &'a [FrameLight],
     pub(super) camera: &'a Camera,

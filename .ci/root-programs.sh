@@ -24,7 +24,7 @@ lab_test() {
         root_programs_wait
         (cd lab && "$LAB_TEST_BIN" "$@")
     else
-        cargo test -q --test lab -- "$@"
+        cargo test --test lab -- "$@"
     fi
 }
 

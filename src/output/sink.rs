@@ -10,8 +10,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::error::FrameError;
 use crate::trace::options::Sample;
-use crate::trace::scanline::RowSink;
-use crate::trace::scanline::{ColorRuns, PixelRow};
+use crate::trace::scanline::{PixelRow, RowSink};
 
 /// Rows into a `DrawTarget`, colours converted to its colour type.
 pub(crate) struct DrawSink<'t, D, C> {
@@ -23,22 +22,11 @@ impl<D: DrawTarget<Color = C>, C: PixelColor + From<Rgb888>> RowSink for DrawSin
     type Error = D::Error;
     #[inline(always)]
     fn row<R: PixelRow>(&mut self, area: Rectangle, row: R) -> Result<(), D::Error> {
-        let ColorRuns {
-            background,
-            before,
-            traced,
-            traced_len: _,
-            after,
-        } = row.color_runs();
-        // One iterator for the target; its `fold` (what `for_each` calls) runs each run
-        // as a loop of its own, so a background run costs the target's store alone. The
-        // background is converted once per row; a traced colour is converted as it comes
-        // (a one-entry cache's compare cost more than converting to `Rgb888` or an RGB
-        // type: `bash .ci/cycles --quick`).
-        let background = C::from(background);
-        let runs = core::iter::repeat_n(background, before as usize)
-            .chain(traced.map(C::from))
-            .chain(core::iter::repeat_n(background, after as usize));
+        // One iterator for the target (`ColorRuns::colors`). The background is
+        // converted once per row; a traced colour is converted as it comes (a one-entry
+        // cache's compare cost more than converting to `Rgb888` or an RGB type: `bash
+        // .ci/cycles --quick`).
+        let runs = row.color_runs().colors::<C>();
         self.target.fill_contiguous(&area, runs)
     }
 }

@@ -256,6 +256,67 @@ pub(crate) struct ColorRuns<I> {
     pub after: u32,
 }
 
+impl<I: Iterator<Item = Rgb888>> ColorRuns<I> {
+    /// The row's colours in a target's colour type, as one iterator: the background
+    /// converted once, each traced colour as it comes.
+    ///
+    /// Its `next` is always inlined and converts the colour itself, so a target whose
+    /// `fill_contiguous` pulls colours one at a time (a `for` loop over a zip) traces
+    /// the row in its own loop. `core`'s `Chain` and `Map` leave inlining their `next`
+    /// to the optimiser, which on the host can make it, with the whole pixel trace
+    /// inside, a call per pixel (`docs/firmware.md`, "On the host"). Its `fold` (what
+    /// `for_each` calls) folds each run as a loop of its own.
+    #[inline(always)]
+    pub fn colors<C: From<Rgb888> + Copy>(self) -> TargetColors<I, C> {
+        let background = C::from(self.background);
+        TargetColors {
+            head: core::iter::repeat_n(background, self.before as usize),
+            traced: self.traced,
+            tail: core::iter::repeat_n(background, self.after as usize),
+        }
+    }
+}
+
+/// A row's colours in a target's colour type, as one iterator ([`ColorRuns::colors`]).
+pub(crate) struct TargetColors<I, C> {
+    head: core::iter::RepeatN<C>,
+    traced: I,
+    tail: core::iter::RepeatN<C>,
+}
+
+impl<I: Iterator<Item = Rgb888>, C: From<Rgb888> + Copy> Iterator for TargetColors<I, C> {
+    type Item = C;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<C> {
+        if let Some(c) = self.head.next() {
+            return Some(c);
+        }
+        // Past its end the traced run stays empty: every row's traced colours check
+        // their column against the row's end.
+        if let Some(c) = self.traced.next() {
+            return Some(C::from(c));
+        }
+        self.tail.next()
+    }
+
+    #[inline(always)]
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let (lo, hi) = self.traced.size_hint();
+        let edges = self.head.len() + self.tail.len();
+        (lo.saturating_add(edges), hi.and_then(|h| h.checked_add(edges)))
+    }
+
+    /// Each run folded as a loop of its own, so that a background run costs the
+    /// target's store alone.
+    #[inline(always)]
+    fn fold<B, F: FnMut(B, C) -> B>(self, init: B, mut f: F) -> B {
+        let acc = self.head.fold(init, &mut f);
+        let acc = self.traced.map(C::from).fold(acc, &mut f);
+        self.tail.fold(acc, f)
+    }
+}
+
 /// A sphere whose span meets the current row.
 pub(crate) struct Active<'s, T: TestStrategy, Sh: Shader> {
     /// Index in the scene.

@@ -9,7 +9,7 @@ use embedded_graphics::primitives::Rectangle;
 
 use crate::integer::IntSphere;
 use crate::render::Render;
-use crate::trace::scanline::{PixelRow, RowSink};
+use crate::trace::scanline::{ColorRuns, PixelRow, RowSink};
 
 use super::plan_integer::IntRule;
 use super::region::{edge, Area};
@@ -230,7 +230,20 @@ pub(super) struct RunSink<'t, 'c, 's, Tg, C> {
 impl<Tg: DrawTarget<Color = C>, C: PixelColor + From<Rgb888>> RowSink for RunSink<'_, '_, '_, Tg, C> {
     type Error = Tg::Error;
     fn row<R: PixelRow>(&mut self, area: Rectangle, row: R) -> Result<(), Tg::Error> {
-        let mut colors = row.color_runs().colors::<C>();
+        let ColorRuns {
+            background,
+            before,
+            traced,
+            traced_len: _,
+            after,
+        } = row.color_runs();
+        let background = C::from(background);
+        // A chain, not `ColorRuns::colors`: taken through `by_ref().take(..)` per run,
+        // that iterator cost an incremental frame of the lit `bounce` 160 B more stack
+        // on the Cortex-M4F (`docs/firmware.md`, "On the host").
+        let mut colors = core::iter::repeat_n(background, before as usize)
+            .chain(traced.map(C::from))
+            .chain(core::iter::repeat_n(background, after as usize));
         if self.full {
             self.stats.sent += area.size.width;
             self.stats.windows += 1;

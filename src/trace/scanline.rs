@@ -567,3 +567,66 @@ impl<'s, S: Stepper, T: TestStrategy, Q: SqrtFn, Sh: Shader, X: RowTracer<'s, T,
         (n, Some(n))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use embedded_graphics::pixelcolor::{BinaryColor, Rgb565};
+
+    use super::*;
+
+    fn runs(before: u32, traced: &[Rgb888], after: u32) -> ColorRuns<impl Iterator<Item = Rgb888> + '_> {
+        ColorRuns {
+            background: Rgb888::new(10, 20, 30),
+            before,
+            traced: traced.iter().copied(),
+            traced_len: traced.len() as u32,
+            after,
+        }
+    }
+
+    /// What a target must receive: the background converted, `before` times, the
+    /// traced colours converted, the background `after` times.
+    fn expected<C: From<Rgb888>>(before: u32, traced: &[Rgb888], after: u32) -> std::vec::Vec<C> {
+        let bg = || C::from(Rgb888::new(10, 20, 30));
+        let mut v: std::vec::Vec<C> = (0..before).map(|_| bg()).collect();
+        v.extend(traced.iter().map(|&c| C::from(c)));
+        v.extend((0..after).map(|_| bg()));
+        v
+    }
+
+    #[test]
+    fn target_colors_pulled_or_folded_are_the_three_runs() {
+        let traced = [
+            Rgb888::new(255, 0, 0),
+            Rgb888::new(0, 255, 0),
+            Rgb888::new(0, 0, 255),
+            Rgb888::new(200, 200, 200),
+        ];
+        for (before, n, after) in [(0, 0, 0), (3, 0, 0), (0, 4, 0), (0, 0, 2), (2, 4, 5), (1, 1, 1)] {
+            let traced = &traced[..n];
+            let want = expected::<Rgb565>(before, traced, after);
+            // Pulled one at a time, as a `for` loop over a zip does; `None` after the
+            // last, every time.
+            let mut it = runs(before, traced, after).colors::<Rgb565>();
+            assert_eq!(it.size_hint(), (want.len(), Some(want.len())));
+            let mut pulled = std::vec::Vec::new();
+            for c in it.by_ref() {
+                pulled.push(c);
+            }
+            assert_eq!(it.next(), None);
+            assert_eq!(pulled, want, "next: {before} + {n} + {after}");
+            // Folded, as `for_each` does.
+            let mut folded = std::vec::Vec::new();
+            runs(before, traced, after)
+                .colors::<Rgb565>()
+                .for_each(|c| folded.push(c));
+            assert_eq!(folded, want, "fold: {before} + {n} + {after}");
+            // Pulled part way, then folded: the rest, in order.
+            let mut it = runs(before, traced, after).colors::<BinaryColor>();
+            let k = want.len() / 2;
+            let mut mixed: std::vec::Vec<BinaryColor> = it.by_ref().take(k).collect();
+            it.for_each(|c| mixed.push(c));
+            assert_eq!(mixed, expected::<BinaryColor>(before, traced, after));
+        }
+    }
+}
